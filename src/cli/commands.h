@@ -1,0 +1,20 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <string>
+
+namespace qs::cli {
+
+//! Exit codes shared by every subcommand.
+enum Exit : int { kOk = 0, kBadInput = 1, kBadArguments = 2 };
+
+struct ConvertArgs {
+  std::string input, output;
+  bool quiet = false;
+};
+int run_convert(const ConvertArgs& args);
+
+//! Refuses to write over the input; returns an error message or "".
+std::string check_output_path(const std::string& input, const std::string& output);
+
+}  // namespace qs::cli

@@ -1,0 +1,49 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include "quadsimp/mesh/quad_mesh.h"
+#include "quadsimp/mesh/tri_mesh.h"
+
+namespace qs {
+
+struct ConvertOptions {
+  //! Greedy pairing refuses to merge two triangles bent by more than this (degrees).
+  double max_dihedral_deg = 60.0;
+  //! Breadth limit of one search for a path that re-pairs a leftover triangle.
+  Index max_search = 1u << 20;
+  //! Times a leftover triangle is moved to a neighbour to retry the search.
+  Index max_moves = 64;
+};
+
+struct ConvertReport {
+  Index input_triangles = 0;   //!< after the parity splits
+  Index parity_splits = 0;     //!< border edges split so that every component is even
+  Index paired_greedy = 0;     //!< triangles paired by the greedy pass
+  Index paired_augmented = 0;  //!< triangles paired by re-pairing along paths
+  Index border_splits = 0;     //!< border edges split where no pairing existed
+  bool refined = false;        //!< fell back to one refinement step
+  Index quads = 0;
+  //! Share of triangles that ended up in a pair (1 unless the fallback ran).
+  double pairing_rate() const {
+    return input_triangles ? double(paired_greedy + paired_augmented) / input_triangles : 0.0;
+  }
+};
+
+//! Converts a clean triangle mesh (see clean()) into a pure quad mesh.
+//!
+//! 1. Per component with an odd triangle count, its longest border edge is split at
+//!    its midpoint (a closed component is always even).
+//! 2. Greedy matching of adjacent triangles, best quad first (score: mean over the
+//!    corners of 1-|cos angle|; non-convex or strongly bent pairs are not merged).
+//! 3. Each leftover triangle is paired by re-pairing along the shortest alternating
+//!    path to another leftover (TPC*10's triangle migration, as an augmenting path).
+//!    Where no pairing exists, the leftover is carried to the border instead and a
+//!    border edge is split at its midpoint.
+//! 4. If anything is still unpaired, one refinement step splits every quad into four
+//!    and every triangle into three quads (edge midpoints, triangle centroids, quad
+//!    diagonal midpoints: all on the input surface).
+//! Original vertices never move. \pre `tri` is clean (oriented, manifold).
+QuadMesh tri_to_quad(const TriMesh& tri, const ConvertOptions& options = {},
+                     ConvertReport* report = nullptr);
+
+}  // namespace qs

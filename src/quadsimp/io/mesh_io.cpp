@@ -1,0 +1,257 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The only file that sees vcglib's I/O. vcglib triangulates polygons on import and
+// marks the inner edges "faux"; MeshLab stores its quads the same way (and writes the
+// flags to PLY with -m ff). So one path serves every format: read triangles with
+// face flags, then regroup triangles joined by a faux edge into polygons.
+#include "quadsimp/io/mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <unordered_map>
+
+#include <vcg/complex/complex.h>
+#include <wrap/io_trimesh/export_obj.h>
+#include <wrap/io_trimesh/export_off.h>
+#include <wrap/io_trimesh/export_ply.h>
+#include <wrap/io_trimesh/import_obj.h>
+#include <wrap/io_trimesh/import_off.h>
+#include <wrap/io_trimesh/import_ply.h>
+#include <wrap/io_trimesh/import_stl.h>
+
+#include "quadsimp/util/errors.h"
+
+namespace qs {
+namespace {
+
+class TVertex;
+class TFace;
+struct TTypes : vcg::UsedTypes<vcg::Use<TVertex>::AsVertexType, vcg::Use<TFace>::AsFaceType> {};
+class TVertex : public vcg::Vertex<TTypes, vcg::vertex::Coord3d, vcg::vertex::Color4b,
+                                   vcg::vertex::BitFlags> {};
+class TFace : public vcg::Face<TTypes, vcg::face::VertexRef, vcg::face::BitFlags> {};
+class TMesh : public vcg::tri::TriMesh<std::vector<TVertex>, std::vector<TFace>> {};
+
+class PVertex;
+class PFace;
+struct PTypes : vcg::UsedTypes<vcg::Use<PVertex>::AsVertexType, vcg::Use<PFace>::AsFaceType> {};
+class PVertex : public vcg::Vertex<PTypes, vcg::vertex::Coord3d, vcg::vertex::BitFlags> {};
+class PFace : public vcg::Face<PTypes, vcg::face::PolyInfo, vcg::face::PFVAdj, vcg::face::BitFlags> {};
+class PMesh : public vcg::tri::TriMesh<std::vector<PVertex>, std::vector<PFace>> {};
+
+[[noreturn]] void fail(const std::string& path, const std::string& why) {
+  throw InvalidInput(path + ": " + why);
+}
+
+void load_vcg(const std::string& path, TMesh& m) {
+  const std::string ext = extension_of(path);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) fail(path, "cannot be opened for reading");
+    if (probe.peek() == std::ifstream::traits_type::eof()) fail(path, "the file is empty");
+  }
+  if (ext == "ply") {
+    int mask = 0;
+    const int err = vcg::tri::io::ImporterPLY<TMesh>::Open(m, path.c_str(), mask);
+    if (err != 0) fail(path, std::string("unreadable PLY (") + vcg::tri::io::ImporterPLY<TMesh>::ErrorMsg(err) + ")");
+  } else if (ext == "obj") {
+    vcg::tri::io::ImporterOBJ<TMesh>::Info info;
+    const int err = vcg::tri::io::ImporterOBJ<TMesh>::Open(m, path.c_str(), info);
+    if (err != 0 && vcg::tri::io::ImporterOBJ<TMesh>::ErrorCritical(err))
+      fail(path, std::string("unreadable OBJ (") + vcg::tri::io::ImporterOBJ<TMesh>::ErrorMsg(err) + ")");
+  } else if (ext == "off") {
+    int mask = 0;
+    const int err = vcg::tri::io::ImporterOFF<TMesh>::Open(m, path.c_str(), mask);
+    if (err != 0) fail(path, std::string("unreadable OFF (") + vcg::tri::io::ImporterOFF<TMesh>::ErrorMsg(err) + ")");
+  } else if (ext == "stl") {
+    int mask = 0;
+    const int err = vcg::tri::io::ImporterSTL<TMesh>::Open(m, path.c_str(), mask);
+    if (err != 0) fail(path, std::string("unreadable STL (") + vcg::tri::io::ImporterSTL<TMesh>::ErrorMsg(err) + ")");
+  } else {
+    fail(path, "unknown format '" + ext + "' (expected .ply, .obj, .off or .stl)");
+  }
+}
+
+// Groups triangles joined through faux edges. A group of two triangles sharing one
+// faux edge is a quad; anything else stays triangles.
+MeshFile regroup(const TMesh& m) {
+  MeshFile out;
+  out.positions.reserve(m.vert.size());
+  std::vector<int> vid(m.vert.size(), -1);
+  for (std::size_t i = 0; i < m.vert.size(); ++i) {
+    if (m.vert[i].IsD()) continue;
+    vid[i] = int(out.positions.size());
+    const auto& p = m.vert[i].cP();
+    out.positions.emplace_back(p[0], p[1], p[2]);
+  }
+  std::vector<std::array<Index, 3>> tris;
+  std::vector<unsigned> faux;  // 3 bits per triangle
+  for (const auto& f : m.face) {
+    if (f.IsD()) continue;
+    std::array<Index, 3> t;
+    for (int k = 0; k < 3; ++k) t[k] = Index(vid[vcg::tri::Index(m, f.cV(k))]);
+    tris.push_back(t);
+    faux.push_back(unsigned(f.IsF(0)) | unsigned(f.IsF(1)) << 1 | unsigned(f.IsF(2)) << 2);
+  }
+  // Pair each triangle with the neighbour across its single faux edge.
+  std::unordered_map<std::uint64_t, Index> dir;
+  dir.reserve(3 * tris.size());
+  for (Index t = 0; t < tris.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      dir[(std::uint64_t(tris[t][k]) << 32) | tris[t][(k + 1) % 3]] = t;
+  bool pure = !tris.empty();
+  std::vector<std::array<Index, 4>> quads;
+  for (Index t = 0; t < tris.size() && pure; ++t) {
+    const unsigned b = faux[t];
+    if (b != 1 && b != 2 && b != 4) { pure = false; break; }
+    const int k = b == 1 ? 0 : b == 2 ? 1 : 2;
+    const Index a = tris[t][k], c = tris[t][(k + 1) % 3], apex = tris[t][(k + 2) % 3];
+    auto it = dir.find((std::uint64_t(c) << 32) | a);
+    if (it == dir.end()) { pure = false; break; }
+    const Index u = it->second;
+    const auto& o = tris[u];
+    int j = 0;
+    while (!(o[j] == c && o[(j + 1) % 3] == a)) ++j;
+    if (!(faux[u] & (1u << j))) { pure = false; break; }
+    if (t < u) quads.push_back({apex, a, o[(j + 2) % 3], c});
+  }
+  if (pure && 2 * quads.size() == tris.size())
+    out.quads = std::move(quads);
+  else
+    out.triangles = std::move(tris);
+  return out;
+}
+
+// Writes through a temporary file beside the target so that readers never see a
+// partial file and a failed run leaves nothing behind.
+template <class WriteFn>
+void write_atomically(const std::string& path, WriteFn&& write) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  fs::path tmp = target;
+  tmp += ".part";
+  tmp.replace_filename("." + tmp.filename().string());
+  try {
+    write(tmp.string());
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw;
+  }
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    fail(path, "cannot be written (" + ec.message() + ")");
+  }
+}
+
+void fill_poly_mesh(const std::vector<Vec3>& pos, const std::vector<std::array<Index, 4>>& quads,
+                    PMesh& pm) {
+  auto vi = vcg::tri::Allocator<PMesh>::AddVertices(pm, pos.size());
+  for (std::size_t i = 0; i < pos.size(); ++i, ++vi) vi->P() = vcg::Point3d(pos[i].x(), pos[i].y(), pos[i].z());
+  auto fi = vcg::tri::Allocator<PMesh>::AddFaces(pm, quads.size());
+  for (std::size_t f = 0; f < quads.size(); ++f, ++fi) {
+    fi->Alloc(4);
+    for (int k = 0; k < 4; ++k) fi->V(k) = &pm.vert[quads[f][k]];
+  }
+}
+
+}  // namespace
+
+std::string extension_of(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+MeshFile read_mesh(const std::string& path) {
+  TMesh m;
+  load_vcg(path, m);
+  if (m.vn == 0) fail(path, "the file holds no vertices (empty mesh)");
+  return regroup(m);
+}
+
+TriMesh triangles_of(const MeshFile& file) {
+  TriMesh t;
+  t.positions = file.positions;
+  t.faces = file.triangles;
+  for (const auto& q : file.quads) {
+    const double d02 = (file.positions[q[0]] - file.positions[q[2]]).squaredNorm();
+    const double d13 = (file.positions[q[1]] - file.positions[q[3]]).squaredNorm();
+    if (d02 <= d13) {
+      t.faces.push_back({q[0], q[1], q[2]});
+      t.faces.push_back({q[0], q[2], q[3]});
+    } else {
+      t.faces.push_back({q[0], q[1], q[3]});
+      t.faces.push_back({q[1], q[2], q[3]});
+    }
+  }
+  return t;
+}
+
+void write_quad_mesh(const std::string& path, const QuadMesh& mesh) {
+  QuadMesh compacted = mesh;
+  compacted.compact();
+  const std::string ext = extension_of(path);
+  if (ext != "ply" && ext != "obj" && ext != "off")
+    fail(path, "cannot write '" + ext + "' (quads are written as .ply, .obj or .off)");
+  PMesh pm;
+  fill_poly_mesh(compacted.positions(), compacted.quads(), pm);
+  write_atomically(path, [&](const std::string& tmp) {
+    int err = 0;
+    if (ext == "ply")
+      err = vcg::tri::io::ExporterPLY<PMesh>::Save(pm, tmp.c_str(), vcg::tri::io::Mask::IOM_NONE, true);
+    else if (ext == "obj")
+      err = vcg::tri::io::ExporterOBJ<PMesh>::Save(pm, tmp.c_str(), vcg::tri::io::Mask::IOM_NONE);
+    else
+      err = vcg::tri::io::ExporterOFF<PMesh>::Save(pm, tmp.c_str(), vcg::tri::io::Mask::IOM_NONE);
+    if (err != 0) fail(path, "cannot be written (vcglib error " + std::to_string(err) + ")");
+  });
+}
+
+void write_tri_mesh_ply(const std::string& path, const TriMesh& mesh,
+                        const std::vector<VertexField>& fields) {
+  if (extension_of(path) != "ply") fail(path, "fields are written as .ply only");
+  for (const auto& f : fields)
+    if (f.values.size() != mesh.positions.size())
+      throw std::invalid_argument("write_tri_mesh_ply: field '" + f.name + "' has the wrong size");
+  TMesh tm;
+  auto vi = vcg::tri::Allocator<TMesh>::AddVertices(tm, mesh.positions.size());
+  for (const Vec3& p : mesh.positions) (vi++)->P() = vcg::Point3d(p.x(), p.y(), p.z());
+  auto fi = vcg::tri::Allocator<TMesh>::AddFaces(tm, mesh.faces.size());
+  for (const auto& t : mesh.faces) {
+    for (int k = 0; k < 3; ++k) fi->V(k) = &tm.vert[t[k]];
+    ++fi;
+  }
+  // Colour ramp of the first field (5th to 95th percentile), so that MeshLab shows
+  // it without any setup.
+  if (!fields.empty()) {
+    std::vector<float> sorted = fields[0].values;
+    std::sort(sorted.begin(), sorted.end());
+    const float lo = sorted[sorted.size() / 20], hi = sorted[sorted.size() * 19 / 20];
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+      const float t = hi > lo ? std::clamp((fields[0].values[i] - lo) / (hi - lo), 0.f, 1.f) : 0.f;
+      tm.vert[i].C().SetColorRamp(0.f, 1.f, t);
+    }
+  }
+  vcg::tri::io::PlyInfo info;
+  info.mask = fields.empty() ? int(vcg::tri::io::Mask::IOM_NONE) : int(vcg::tri::io::Mask::IOM_VERTCOLOR);
+  for (const auto& f : fields) {
+    auto h = vcg::tri::Allocator<TMesh>::AddPerVertexAttribute<float>(tm, f.name);
+    for (std::size_t i = 0; i < f.values.size(); ++i) h[i] = f.values[i];
+    info.AddPerVertexFloatAttribute(f.name);
+  }
+  write_atomically(path, [&](const std::string& tmp) {
+    const int err = vcg::tri::io::ExporterPLY<TMesh>::Save(tm, tmp.c_str(), true, info);
+    if (err != 0) fail(path, "cannot be written (vcglib error " + std::to_string(err) + ")");
+  });
+}
+
+}  // namespace qs

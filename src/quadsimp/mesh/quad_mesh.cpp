@@ -1,0 +1,248 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/mesh/quad_mesh.h"
+
+#include <algorithm>
+#include <string>
+#include <unordered_map>
+
+#include "quadsimp/util/errors.h"
+
+namespace qs {
+namespace {
+
+std::uint64_t edge_key(Index a, Index b) { return (std::uint64_t(a) << 32) | b; }
+
+// Count of half-edges leaving each vertex; the fan walk must reach all of them,
+// otherwise the vertex joins two or more fans (a non-manifold vertex).
+std::vector<Index> outgoing_counts(const QuadMesh& m) {
+  std::vector<Index> count(m.vertex_capacity(), 0);
+  for (Index f = 0; f < m.face_capacity(); ++f)
+    if (m.is_face_live(f))
+      for (Index k = 0; k < 4; ++k) ++count[m.vertex(f, k)];
+  return count;
+}
+
+Index fan_size(const QuadMesh& m, Index v, Index limit) {
+  Index n = 0;
+  const Index start = m.out(v);
+  Index h = start;
+  do {
+    if (++n > limit) break;
+    h = m.rotate(h);
+  } while (h != kNone && h != start);
+  return n;
+}
+
+}  // namespace
+
+QuadMesh QuadMesh::from_faces(std::vector<Vec3> positions,
+                              const std::vector<std::array<Index, 4>>& quads) {
+  QuadMesh m;
+  m.pos_ = std::move(positions);
+  const Index nv = Index(m.pos_.size());
+  m.out_.assign(nv, kNone);
+  m.origin_.reserve(4 * quads.size());
+  for (std::size_t f = 0; f < quads.size(); ++f) {
+    const auto& q = quads[f];
+    for (int k = 0; k < 4; ++k) {
+      if (q[k] >= nv)
+        throw InvalidInput("face " + std::to_string(f) + " refers to vertex " +
+                           std::to_string(q[k]) + " but there are only " + std::to_string(nv));
+      for (int j = 0; j < k; ++j)
+        if (q[j] == q[k])
+          throw InvalidInput("quad " + std::to_string(f) + " repeats vertex " + std::to_string(q[k]));
+    }
+    for (int k = 0; k < 4; ++k) m.origin_.push_back(q[k]);
+  }
+  m.twin_.assign(m.origin_.size(), kNone);
+  m.n_live_faces_ = Index(quads.size());
+
+  std::unordered_map<std::uint64_t, Index> directed;
+  directed.reserve(m.origin_.size());
+  for (Index h = 0; h < m.origin_.size(); ++h) {
+    if (!directed.emplace(edge_key(m.from(h), m.to(h)), h).second)
+      throw InvalidInput("edge " + std::to_string(m.from(h)) + "-" + std::to_string(m.to(h)) +
+                         " is shared by more than two faces or by faces of opposite orientation");
+  }
+  for (Index h = 0; h < m.origin_.size(); ++h) {
+    auto it = directed.find(edge_key(m.to(h), m.from(h)));
+    if (it != directed.end()) m.twin_[h] = it->second;
+  }
+  for (Index h = 0; h < m.origin_.size(); ++h) {
+    const Index v = m.from(h);
+    if (m.out_[v] == kNone || m.twin_[h] == kNone) m.out_[v] = h;
+  }
+  const std::vector<Index> count = outgoing_counts(m);
+  for (Index v = 0; v < nv; ++v) {
+    if (m.out_[v] == kNone) continue;
+    ++m.n_live_vertices_;
+    if (fan_size(m, v, count[v]) != count[v])
+      throw InvalidInput("vertex " + std::to_string(v) +
+                         " is non-manifold (its faces form more than one fan)");
+  }
+  return m;
+}
+
+bool QuadMesh::is_border_face(Index f) const {
+  for (Index k = 0; k < 4; ++k)
+    if (twin_[4 * f + k] == kNone) return true;
+  return false;
+}
+
+int QuadMesh::valence(Index v) const {
+  int n = 0;
+  for_each_outgoing(v, [&](Index) { ++n; });
+  return is_border_vertex(v) ? n + 1 : n;
+}
+
+Vec3 QuadMesh::face_area_normal(Index f) const {
+  const auto q = face_vertices(f);
+  return (pos_[q[2]] - pos_[q[0]]).cross(pos_[q[3]] - pos_[q[1]]);
+}
+
+Vec3 QuadMesh::face_centroid(Index f) const {
+  const auto q = face_vertices(f);
+  return 0.25 * (pos_[q[0]] + pos_[q[1]] + pos_[q[2]] + pos_[q[3]]);
+}
+
+Index QuadMesh::add_vertex(const Vec3& p) {
+  pos_.push_back(p);
+  out_.push_back(kNone);
+  return Index(pos_.size() - 1);
+}
+
+Index QuadMesh::add_face(const std::array<Index, 4>& v) {
+  const Index f = face_capacity();
+  for (Index k = 0; k < 4; ++k) {
+    origin_.push_back(v[k]);
+    twin_.push_back(kNone);
+    if (out_[v[k]] == kNone) {
+      out_[v[k]] = 4 * f + k;
+      ++n_live_vertices_;
+    }
+  }
+  ++n_live_faces_;
+  return f;
+}
+
+void QuadMesh::kill_face(Index f) {
+  if (!is_face_live(f)) return;
+  for (Index k = 0; k < 4; ++k) {
+    const Index h = 4 * f + k;
+    if (twin_[h] != kNone && twin_[twin_[h]] == h) twin_[twin_[h]] = kNone;
+    twin_[h] = kNone;
+    origin_[h] = kNone;
+  }
+  --n_live_faces_;
+}
+
+void QuadMesh::kill_vertex(Index v) {
+  if (out_[v] == kNone) return;
+  out_[v] = kNone;
+  --n_live_vertices_;
+}
+
+void QuadMesh::repair_out(Index v) {
+  // Walk backwards from the current out-edge to the start of the fan: that is
+  // the border out-edge if v is on the border.
+  Index h = out_[v];
+  if (h == kNone || origin_[h] != v) return;
+  const Index start = h;
+  for (;;) {
+    const Index t = twin_[h];
+    if (t == kNone) break;
+    const Index back = next(t);
+    if (back == start) break;
+    h = back;
+  }
+  out_[v] = h;
+}
+
+void QuadMesh::compact(std::vector<Index>* vertex_map, std::vector<Index>* face_map) {
+  std::vector<Index> vmap(pos_.size(), kNone), fmap(face_capacity(), kNone);
+  Index nv = 0, nf = 0;
+  for (Index v = 0; v < pos_.size(); ++v)
+    if (out_[v] != kNone) vmap[v] = nv++;
+  for (Index f = 0; f < face_capacity(); ++f)
+    if (is_face_live(f)) fmap[f] = nf++;
+
+  std::vector<Vec3> pos(nv);
+  std::vector<Index> out(nv);
+  for (Index v = 0; v < pos_.size(); ++v) {
+    if (vmap[v] == kNone) continue;
+    pos[vmap[v]] = pos_[v];
+    out[vmap[v]] = 4 * fmap[face(out_[v])] + corner(out_[v]);
+  }
+  std::vector<Index> origin(4 * std::size_t(nf)), twin(4 * std::size_t(nf));
+  for (Index f = 0; f < face_capacity(); ++f) {
+    if (fmap[f] == kNone) continue;
+    for (Index k = 0; k < 4; ++k) {
+      const Index h = 4 * f + k, nh = 4 * fmap[f] + k;
+      origin[nh] = vmap[origin_[h]];
+      twin[nh] = twin_[h] == kNone ? kNone : 4 * fmap[face(twin_[h])] + corner(twin_[h]);
+    }
+  }
+  pos_ = std::move(pos);
+  out_ = std::move(out);
+  origin_ = std::move(origin);
+  twin_ = std::move(twin);
+  n_live_vertices_ = nv;
+  n_live_faces_ = nf;
+  if (vertex_map) *vertex_map = std::move(vmap);
+  if (face_map) *face_map = std::move(fmap);
+}
+
+std::vector<std::array<Index, 4>> QuadMesh::quads() const {
+  std::vector<std::array<Index, 4>> q;
+  q.reserve(n_live_faces_);
+  for (Index f = 0; f < face_capacity(); ++f)
+    if (is_face_live(f)) q.push_back(face_vertices(f));
+  return q;
+}
+
+void validate(const QuadMesh& m) {
+  auto fail = [](const std::string& what) { throw TopologyError("validate: " + what); };
+  Index live_faces = 0, live_vertices = 0;
+  std::vector<std::uint64_t> edges;
+  edges.reserve(m.halfedge_capacity());
+  for (Index f = 0; f < m.face_capacity(); ++f) {
+    if (!m.is_face_live(f)) continue;
+    ++live_faces;
+    const auto q = m.face_vertices(f);
+    for (Index k = 0; k < 4; ++k) {
+      if (q[k] >= m.vertex_capacity() || !m.is_vertex_live(q[k]))
+        fail("face " + std::to_string(f) + " uses a dead or invalid vertex");
+      for (Index j = 0; j < k; ++j)
+        if (q[j] == q[k]) fail("face " + std::to_string(f) + " repeats vertex " + std::to_string(q[k]));
+      const Index h = QuadMesh::halfedge(f, k), t = m.twin(h);
+      edges.push_back(edge_key(m.from(h), m.to(h)));
+      if (t == kNone) continue;
+      if (t >= m.halfedge_capacity() || !m.is_face_live(QuadMesh::face(t)))
+        fail("half-edge " + std::to_string(h) + " has a dead twin");
+      if (QuadMesh::face(t) == f) fail("face " + std::to_string(f) + " is its own neighbour");
+      if (m.twin(t) != h) fail("twin of twin of half-edge " + std::to_string(h) + " is not itself");
+      if (m.from(t) != m.to(h) || m.to(t) != m.from(h))
+        fail("half-edge " + std::to_string(h) + " and its twin are not reversed (orientation)");
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end())
+    fail("a directed edge appears twice (non-manifold or doubled edge)");
+  if (live_faces != m.n_faces()) fail("live face count is stale");
+
+  const std::vector<Index> count = outgoing_counts(m);
+  for (Index v = 0; v < m.vertex_capacity(); ++v) {
+    if (!m.is_vertex_live(v)) continue;
+    ++live_vertices;
+    const Index h = m.out(v);
+    if (h >= m.halfedge_capacity() || !m.is_face_live(QuadMesh::face(h)) || m.from(h) != v)
+      fail("vertex " + std::to_string(v) + " has an invalid out half-edge");
+    if (fan_size(m, v, count[v]) != count[v])
+      fail("vertex " + std::to_string(v) + " is not a single fan (non-manifold or bad border out-edge)");
+  }
+  if (live_vertices != m.n_vertices()) fail("live vertex count is stale");
+  for (Index v = 0; v < m.vertex_capacity(); ++v)
+    if (m.is_vertex_live(v) && count[v] == 0) fail("vertex " + std::to_string(v) + " has no face");
+}
+
+}  // namespace qs

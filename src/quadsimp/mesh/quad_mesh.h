@@ -1,0 +1,126 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "quadsimp/util/types.h"
+
+namespace qs {
+
+//! A pure-quad, index-based half-edge mesh.
+//!
+//! Half-edge h = 4*f + k runs from corner k of face f to corner k+1, so the face,
+//! next and prev of a half-edge are arithmetic. Stored per half-edge: its origin
+//! vertex and its twin (kNone on the border). Stored per vertex: one outgoing
+//! half-edge and the position. Faces are counter-clockwise seen from outside.
+//!
+//! For a border vertex, out(v) is its outgoing border half-edge, so that walking
+//! the fan with `rotate(h) = twin(prev(h))` visits every incident face once.
+//!
+//! Deletion leaves tombstones (a dead face has corner 0 == kNone, a dead vertex has
+//! out == kNone); compact() renumbers once at the end.
+class QuadMesh {
+ public:
+  QuadMesh() = default;
+
+  //! Builds the connectivity from indexed quads. Throws InvalidInput if an edge
+  //! has more than two faces, two faces disagree on orientation, a face repeats a
+  //! vertex, or a vertex's faces do not form a single fan.
+  static QuadMesh from_faces(std::vector<Vec3> positions,
+                             const std::vector<std::array<Index, 4>>& quads);
+
+  // --- sizes (tombstones included in the *_capacity counts) ---
+  Index n_vertices() const { return n_live_vertices_; }
+  Index n_faces() const { return n_live_faces_; }
+  Index vertex_capacity() const { return Index(pos_.size()); }
+  Index face_capacity() const { return Index(origin_.size() / 4); }
+  Index halfedge_capacity() const { return Index(origin_.size()); }
+
+  // --- half-edge arithmetic ---
+  static Index face(Index h) { return h >> 2; }
+  static Index corner(Index h) { return h & 3u; }
+  static Index next(Index h) { return (h & ~3u) | ((h + 1) & 3u); }
+  static Index prev(Index h) { return (h & ~3u) | ((h + 3) & 3u); }
+  static Index opposite_in_face(Index h) { return (h & ~3u) | ((h + 2) & 3u); }
+  static Index halfedge(Index f, Index k) { return 4 * f + (k & 3u); }
+
+  Index twin(Index h) const { return twin_[h]; }
+  Index from(Index h) const { return origin_[h]; }
+  Index to(Index h) const { return origin_[next(h)]; }
+  Index out(Index v) const { return out_[v]; }
+  //! Next outgoing half-edge around from(h), kNone past the last face at a border.
+  Index rotate(Index h) const { return twin_[prev(h)]; }
+  Index vertex(Index f, Index k) const { return origin_[4 * f + (k & 3u)]; }
+  std::array<Index, 4> face_vertices(Index f) const {
+    return {origin_[4 * f], origin_[4 * f + 1], origin_[4 * f + 2], origin_[4 * f + 3]};
+  }
+
+  bool is_face_live(Index f) const { return origin_[4 * f] != kNone; }
+  bool is_vertex_live(Index v) const { return out_[v] != kNone; }
+  bool is_border_halfedge(Index h) const { return twin_[h] == kNone; }
+  bool is_border_vertex(Index v) const { return twin_[out_[v]] == kNone; }
+  //! True when f has at least one border edge.
+  bool is_border_face(Index f) const;
+
+  //! Number of edges incident to v (a border vertex counts its two border edges).
+  int valence(Index v) const;
+
+  const Vec3& position(Index v) const { return pos_[v]; }
+  Vec3& position(Index v) { return pos_[v]; }
+  const std::vector<Vec3>& positions() const { return pos_; }
+
+  //! Calls fn(h) for every outgoing half-edge of v, in fan order. At a border vertex
+  //! the last outgoing border edge (the one that closes the fan) is not a face
+  //! half-edge of v and is not visited; use valence() for edge counts.
+  template <class Fn>
+  void for_each_outgoing(Index v, Fn&& fn) const {
+    const Index start = out_[v];
+    Index h = start;
+    do {
+      fn(h);
+      h = rotate(h);
+    } while (h != kNone && h != start);
+  }
+
+  //! Face normal as the cross product of the diagonals (twice the vector area).
+  Vec3 face_area_normal(Index f) const;
+  Vec3 face_centroid(Index f) const;
+
+  // --- editing primitives for the operators ---
+  Index add_vertex(const Vec3& p);
+  //! Appends a face with the given corners; twins are left unset (kNone).
+  Index add_face(const std::array<Index, 4>& v);
+  void set_twin(Index a, Index b) {
+    twin_[a] = b;
+    if (b != kNone) twin_[b] = a;
+  }
+  void set_origin(Index h, Index v) { origin_[h] = v; }
+  void set_out(Index v, Index h) { out_[v] = h; }
+  void kill_face(Index f);
+  void kill_vertex(Index v);
+  //! Re-chooses out(v) so that a border vertex starts its fan at the border.
+  //! Marks v dead if no live face uses it.
+  void repair_out(Index v);
+
+  //! Removes tombstones. Optional maps give old id -> new id (kNone if removed).
+  void compact(std::vector<Index>* vertex_map = nullptr, std::vector<Index>* face_map = nullptr);
+
+  //! Indexed quads of the live faces (after compact(), ids match the mesh's).
+  std::vector<std::array<Index, 4>> quads() const;
+
+ private:
+  std::vector<Vec3> pos_;
+  std::vector<Index> out_;
+  std::vector<Index> origin_;  // 4 per face
+  std::vector<Index> twin_;    // 4 per face
+  Index n_live_vertices_ = 0;
+  Index n_live_faces_ = 0;
+};
+
+//! Checks every invariant (twins, orientation, one fan per vertex, border out-edges,
+//! four distinct live vertices per face, no doubled edge, live counts). Throws
+//! TopologyError naming the first violation.
+void validate(const QuadMesh& mesh);
+
+}  // namespace qs

@@ -1,0 +1,283 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/mesh/tri_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "quadsimp/util/errors.h"
+
+namespace qs {
+namespace {
+
+struct EdgeFace {
+  std::uint64_t key;  // (min vertex, max vertex)
+  Index face;
+  bool operator<(const EdgeFace& o) const { return key < o.key || (key == o.key && face < o.face); }
+};
+
+std::vector<EdgeFace> sorted_edges(const TriMesh& m) {
+  std::vector<EdgeFace> e;
+  e.reserve(3 * m.faces.size());
+  for (Index f = 0; f < m.n_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
+      e.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), f});
+    }
+  std::sort(e.begin(), e.end());
+  return e;
+}
+
+// True when face f walks edge a->b in that direction.
+bool has_directed(const std::array<Index, 3>& t, Index a, Index b) {
+  for (int k = 0; k < 3; ++k)
+    if (t[k] == a && t[(k + 1) % 3] == b) return true;
+  return false;
+}
+
+struct UnionFind {
+  std::vector<Index> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), Index(0)); }
+  Index find(Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(Index a, Index b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+void remove_unreferenced(TriMesh& m, CleanReport& r) {
+  std::vector<Index> map(m.n_vertices(), kNone);
+  for (const auto& t : m.faces)
+    for (Index v : t) map[v] = 0;
+  Index n = 0;
+  for (Index v = 0; v < m.n_vertices(); ++v)
+    if (map[v] == 0) {
+      map[v] = n;
+      m.positions[n++] = m.positions[v];
+    }
+  r.removed_unreferenced_vertices = m.n_vertices() - n;
+  m.positions.resize(n);
+  for (auto& t : m.faces)
+    for (Index& v : t) v = map[v];
+}
+
+void merge_duplicate_vertices(TriMesh& m, CleanReport& r) {
+  std::vector<Index> order(m.n_vertices());
+  std::iota(order.begin(), order.end(), Index(0));
+  auto less = [&](Index a, Index b) {
+    const Vec3 &p = m.positions[a], &q = m.positions[b];
+    if (p.x() != q.x()) return p.x() < q.x();
+    if (p.y() != q.y()) return p.y() < q.y();
+    if (p.z() != q.z()) return p.z() < q.z();
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::vector<Index> map(m.n_vertices());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const bool same = i > 0 && m.positions[order[i]] == m.positions[order[i - 1]];
+    map[order[i]] = same ? map[order[i - 1]] : order[i];
+    if (same) ++r.merged_duplicate_vertices;
+  }
+  for (auto& t : m.faces)
+    for (Index& v : t) v = map[v];
+}
+
+void remove_degenerate_and_duplicate_faces(TriMesh& m, CleanReport& r) {
+  const double diag = bbox_diagonal(m.positions);
+  const double min_area2 = std::pow(1e-12 * diag, 4);  // squared twice-area, relative to size
+  std::vector<std::array<Index, 3>> kept;
+  kept.reserve(m.faces.size());
+  for (const auto& t : m.faces) {
+    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+    const bool flat = !repeated && (m.positions[t[1]] - m.positions[t[0]])
+                                       .cross(m.positions[t[2]] - m.positions[t[0]])
+                                       .squaredNorm() <= min_area2;
+    if (repeated || flat)
+      ++r.removed_degenerate_faces;
+    else
+      kept.push_back(t);
+  }
+  // Duplicates: the same vertex set in any order; keep the first occurrence.
+  std::vector<std::pair<std::array<Index, 3>, Index>> key(kept.size());
+  for (Index f = 0; f < kept.size(); ++f) {
+    auto s = kept[f];
+    std::sort(s.begin(), s.end());
+    key[f] = {s, f};
+  }
+  std::sort(key.begin(), key.end());
+  std::vector<char> drop(kept.size(), 0);
+  for (std::size_t i = 1; i < key.size(); ++i)
+    if (key[i].first == key[i - 1].first) drop[key[i].second] = 1;
+  m.faces.clear();
+  for (Index f = 0; f < kept.size(); ++f)
+    if (!drop[f]) m.faces.push_back(kept[f]);
+    else ++r.removed_duplicate_faces;
+}
+
+void check_edge_manifold(const TriMesh& m, const std::vector<EdgeFace>& e, const std::string& src) {
+  for (std::size_t i = 0; i + 2 < e.size(); ++i)
+    if (e[i].key == e[i + 2].key)
+      throw InvalidInput(src + ": edge " + std::to_string(e[i].key >> 32) + "-" +
+                         std::to_string(e[i].key & 0xffffffffu) +
+                         " is shared by more than two triangles (non-manifold edge)");
+  (void)m;
+}
+
+// Flips faces so that every manifold edge is walked in opposite directions by its
+// two faces. Per component, the orientation kept is the one most faces already had.
+void orient(TriMesh& m, const std::vector<EdgeFace>& e, CleanReport& r, const std::string& src) {
+  const Index nf = m.n_faces();
+  std::vector<std::vector<std::pair<Index, Index>>> nbr(nf);  // (face, shared edge index)
+  for (std::size_t i = 0; i + 1 < e.size(); ++i)
+    if (e[i].key == e[i + 1].key) {
+      nbr[e[i].face].push_back({e[i + 1].face, Index(i)});
+      nbr[e[i + 1].face].push_back({e[i].face, Index(i)});
+    }
+  std::vector<int> flip(nf, -1);
+  std::vector<Index> stack, members;
+  for (Index seed = 0; seed < nf; ++seed) {
+    if (flip[seed] != -1) continue;
+    flip[seed] = 0;
+    stack = {seed};
+    members.clear();
+    while (!stack.empty()) {
+      const Index f = stack.back();
+      stack.pop_back();
+      members.push_back(f);
+      for (auto [g, ei] : nbr[f]) {
+        const Index a = Index(e[ei].key >> 32), b = Index(e[ei].key & 0xffffffffu);
+        const bool same_dir = has_directed(m.faces[f], a, b) == has_directed(m.faces[g], a, b);
+        const int want = flip[f] ^ int(same_dir);
+        if (flip[g] == -1) {
+          flip[g] = want;
+          stack.push_back(g);
+        } else if (flip[g] != want) {
+          throw InvalidInput(src + ": the surface is not orientable (a Moebius-like strip)");
+        }
+      }
+    }
+    Index flipped = 0;
+    for (Index f : members) flipped += Index(flip[f]);
+    const bool invert = 2 * flipped > members.size();
+    for (Index f : members) {
+      if (bool(flip[f]) != invert) {
+        std::swap(m.faces[f][1], m.faces[f][2]);
+        ++r.flipped_faces;
+      }
+    }
+  }
+}
+
+// A vertex whose triangles form several fans (joined only at the vertex) gets one
+// copy per extra fan; afterwards every vertex is a disc or half-disc.
+void split_nonmanifold_vertices(TriMesh& m, CleanReport& r) {
+  const Index nv = m.n_vertices();
+  std::vector<Index> start(nv + 1, 0);
+  for (const auto& t : m.faces)
+    for (Index v : t) ++start[v + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<Index> corner(start.back()), fill(start.begin(), start.end() - 1);
+  for (Index f = 0; f < m.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k) corner[fill[m.faces[f][k]]++] = 3 * f + k;
+
+  std::vector<std::pair<Index, Index>> spokes;  // (other vertex, local corner index)
+  for (Index v = 0; v < nv; ++v) {
+    const Index b = start[v], n = start[v + 1] - b;
+    if (n < 2) continue;
+    UnionFind uf(n);
+    spokes.clear();
+    for (Index i = 0; i < n; ++i) {
+      const Index f = corner[b + i] / 3, k = corner[b + i] % 3;
+      spokes.push_back({m.faces[f][(k + 1) % 3], i});
+      spokes.push_back({m.faces[f][(k + 2) % 3], i});
+    }
+    std::sort(spokes.begin(), spokes.end());
+    for (std::size_t s = 1; s < spokes.size(); ++s)
+      if (spokes[s].first == spokes[s - 1].first) uf.unite(spokes[s].second, spokes[s - 1].second);
+    std::vector<Index> copy_of_root(n, kNone);
+    for (Index i = 0; i < n; ++i) {
+      const Index root = uf.find(i);
+      if (root == 0) continue;  // the fan holding the first corner keeps v
+      if (copy_of_root[root] == kNone) {
+        copy_of_root[root] = Index(m.positions.size());
+        m.positions.push_back(m.positions[v]);
+        ++r.split_nonmanifold_vertices;
+      }
+      const Index f = corner[b + i] / 3, k = corner[b + i] % 3;
+      m.faces[f][k] = copy_of_root[root];
+    }
+  }
+}
+
+}  // namespace
+
+double bbox_diagonal(const std::vector<Vec3>& positions) {
+  if (positions.empty()) return 0.0;
+  Vec3 lo = positions[0], hi = positions[0];
+  for (const Vec3& p : positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
+}
+
+Index face_components(const TriMesh& mesh, std::vector<Index>& component) {
+  const auto e = sorted_edges(mesh);
+  UnionFind uf(mesh.n_faces());
+  for (std::size_t i = 0; i + 1 < e.size(); ++i)
+    if (e[i].key == e[i + 1].key) uf.unite(e[i].face, e[i + 1].face);
+  component.assign(mesh.n_faces(), kNone);
+  std::vector<Index> id(mesh.n_faces(), kNone);
+  Index n = 0;
+  for (Index f = 0; f < mesh.n_faces(); ++f) {
+    const Index root = uf.find(f);
+    if (id[root] == kNone) id[root] = n++;
+    component[f] = id[root];
+  }
+  return n;
+}
+
+CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
+  CleanReport r;
+  if (m.positions.empty()) throw InvalidInput(src + ": the mesh is empty (no vertices)");
+  if (m.faces.empty())
+    throw InvalidInput(src + ": the mesh has no faces (" + std::to_string(m.n_vertices()) +
+                       " vertices: a point cloud?); quadsimp needs a triangle surface");
+  for (Index v = 0; v < m.n_vertices(); ++v)
+    if (!m.positions[v].allFinite())
+      throw InvalidInput(src + ": vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
+  for (Index f = 0; f < m.n_faces(); ++f)
+    for (Index v : m.faces[f])
+      if (v >= m.n_vertices())
+        throw InvalidInput(src + ": face " + std::to_string(f) + " refers to vertex " +
+                           std::to_string(v) + ", out of range (" + std::to_string(m.n_vertices()) +
+                           " vertices)");
+
+  merge_duplicate_vertices(m, r);
+  remove_degenerate_and_duplicate_faces(m, r);
+  if (m.faces.empty()) throw InvalidInput(src + ": every face is degenerate (zero area)");
+  auto edges = sorted_edges(m);
+  check_edge_manifold(m, edges, src);
+  orient(m, edges, r, src);
+  split_nonmanifold_vertices(m, r);
+  remove_unreferenced(m, r);
+  r.removed_unreferenced_vertices -= r.merged_duplicate_vertices;  // merged copies are not "unreferenced"
+
+  if (log) {
+    auto note = [&](Index n, const char* what) {
+      if (n) log(src + ": " + std::to_string(n) + " " + what);
+    };
+    note(r.merged_duplicate_vertices, "duplicate vertices merged");
+    note(r.removed_degenerate_faces, "degenerate faces removed");
+    note(r.removed_duplicate_faces, "duplicate faces removed");
+    note(r.removed_unreferenced_vertices, "unreferenced vertices removed");
+    note(r.split_nonmanifold_vertices, "non-manifold vertices split");
+    note(r.flipped_faces, "faces re-oriented to match their neighbours");
+  }
+  return r;
+}
+
+}  // namespace qs

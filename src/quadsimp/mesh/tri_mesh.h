@@ -1,0 +1,50 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "quadsimp/util/progress.h"
+#include "quadsimp/util/types.h"
+
+namespace qs {
+
+//! An indexed triangle mesh: the reference surface M0 and the input of the
+//! tri-to-quad conversion. Plain data; invariants are established by clean().
+struct TriMesh {
+  std::vector<Vec3> positions;
+  std::vector<std::array<Index, 3>> faces;
+
+  Index n_vertices() const { return Index(positions.size()); }
+  Index n_faces() const { return Index(faces.size()); }
+};
+
+//! What clean() repaired. Every count is also reported through the log function.
+struct CleanReport {
+  Index merged_duplicate_vertices = 0;
+  Index removed_degenerate_faces = 0;
+  Index removed_duplicate_faces = 0;
+  Index removed_unreferenced_vertices = 0;
+  Index split_nonmanifold_vertices = 0;
+  Index flipped_faces = 0;  //!< faces re-oriented to agree with their component
+};
+
+//! Makes `mesh` a clean, oriented, edge- and vertex-manifold triangle mesh, or throws.
+//!
+//! Repairs (each logged): exact-duplicate vertices merged, faces with a repeated
+//! vertex or zero area removed, duplicate faces removed, unreferenced vertices
+//! removed, non-manifold vertices split (one copy per fan), faces re-oriented
+//! consistently within each component.
+//! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
+//!        out-of-range indices, an edge with more than two faces, a non-orientable
+//!        component. `what` is one sentence; `source` (a file name) prefixes it.
+CleanReport clean(TriMesh& mesh, const std::string& source = "mesh", const LogFn& log = {});
+
+//! Length of the diagonal of the axis-aligned bounding box.
+double bbox_diagonal(const std::vector<Vec3>& positions);
+
+//! Connected component id per face (faces sharing an edge), and their count.
+Index face_components(const TriMesh& mesh, std::vector<Index>& component);
+
+}  // namespace qs
