@@ -206,8 +206,10 @@ void write_quad_mesh(const std::string& path, const QuadMesh& mesh) {
   fill_poly_mesh(compacted.positions(), compacted.quads(), pm);
   write_atomically(path, [&](const std::string& tmp) {
     int err = 0;
+    // vcglib's binary PLY writer emits triangles only (three indices per face,
+    // whatever the polygon); its ASCII writer handles polygons.
     if (ext == "ply")
-      err = vcg::tri::io::ExporterPLY<PMesh>::Save(pm, tmp.c_str(), vcg::tri::io::Mask::IOM_NONE, true);
+      err = vcg::tri::io::ExporterPLY<PMesh>::Save(pm, tmp.c_str(), vcg::tri::io::Mask::IOM_NONE, false);
     else if (ext == "obj")
       err = vcg::tri::io::ExporterOBJ<PMesh>::Save(pm, tmp.c_str(), vcg::tri::io::Mask::IOM_NONE);
     else

@@ -27,9 +27,8 @@ MeshFile read_mesh(const std::string& path);
 //! The triangles of a file: its triangles, or its quads split along their shorter diagonal.
 TriMesh triangles_of(const MeshFile& file);
 
-//! Writes the quads of `mesh` as PLY (binary), OBJ or OFF, chosen by extension.
+//! Writes the quads of `mesh` as PLY (ASCII), OBJ or OFF, chosen by extension.
 //! The file appears atomically: written to a temporary beside it, then renamed.
-//! Optional per-vertex scalar properties are written to PLY only (name, values).
 //! \throw InvalidInput for an unknown extension or a file that cannot be written.
 void write_quad_mesh(const std::string& path, const QuadMesh& mesh);
 

@@ -1,0 +1,106 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+// Runs the real quadsimp binary: exit codes, messages, and what lands on disk.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "fixtures/shapes.h"
+#include "quadsimp/io/mesh_io.h"
+
+using namespace qs;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+  int code;
+  std::string out;  // stdout and stderr together
+};
+
+CliRun run(const std::string& args) {
+  CliRun r{-1, {}};
+  FILE* p = ::popen((fixtures::cli_path() + " " + args + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) r.out.append(buf, n);
+  const int status = ::pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("qs_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+    input_ = p("sphere.ply");
+    write_tri_mesh_ply(input_, fixtures::tri_sphere(10, 12));
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string p(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(p(name)) << text;
+    return p(name);
+  }
+  fs::path dir_;
+  std::string input_;
+};
+
+}  // namespace
+
+TEST_F(Cli, help_for_every_subcommand) {
+  EXPECT_EQ(run("--help").code, 0);
+  const CliRun r = run("convert --help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("OUT"), std::string::npos);
+}
+
+TEST_F(Cli, convert_writes_quads) {
+  for (const char* ext : {"ply", "obj", "off"}) {
+    const std::string out = p(std::string("out.") + ext);
+    const CliRun r = run("convert " + input_ + " " + out);
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("quads"), std::string::npos);
+    const MeshFile f = read_mesh(out);
+    EXPECT_TRUE(f.is_pure_quad());
+  }
+}
+
+TEST_F(Cli, bad_arguments_exit_2) {
+  EXPECT_EQ(run("").code, 2);
+  EXPECT_EQ(run("convert").code, 2);
+  EXPECT_EQ(run("convert " + input_).code, 2);
+  EXPECT_EQ(run("convert " + p("nope.ply") + " " + p("o.ply")).code, 2);
+  EXPECT_EQ(run("convert " + input_ + " " + p("o.stl")).code, 2);
+  EXPECT_EQ(run("frobnicate").code, 2);
+  // Never over the input, and the input is untouched.
+  const auto before = fs::file_size(input_);
+  const CliRun r = run("convert " + input_ + " " + input_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("over the input"), std::string::npos);
+  EXPECT_EQ(fs::file_size(input_), before);
+}
+
+TEST_F(Cli, bad_input_exits_1_and_writes_nothing) {
+  const std::vector<std::string> bad = {
+      write("cloud.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                         "property float z\nend_header\n0 0 0\n1 0 0\n"),
+      write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
+      write("fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n"),
+      write("empty.off", ""),
+      write("junk.ply", "garbage\n"),
+  };
+  for (const auto& in : bad) {
+    SCOPED_TRACE(in);
+    const std::string out = p("result.ply");
+    const CliRun r = run("convert " + in + " " + out);
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find(in), std::string::npos) << "the error names the file: " << r.out;
+    EXPECT_FALSE(fs::exists(out));
+  }
+  for (const auto& e : fs::directory_iterator(dir_))
+    EXPECT_EQ(e.path().filename().string().find(".result"), std::string::npos) << "temporary left: " << e.path();
+}

@@ -1,0 +1,179 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/io/mesh_io.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "fixtures/shapes.h"
+#include "quadsimp/io/load_input.h"
+#include "quadsimp/util/errors.h"
+
+using namespace qs;
+using namespace qs::fixtures;
+namespace fs = std::filesystem;
+
+namespace {
+
+class MeshIo : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("qs_io_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name), std::ios::binary) << text;
+    return path(name);
+  }
+  fs::path dir_;
+};
+
+std::string error_of(const std::string& p) {
+  try {
+    read_mesh(p);
+  } catch (const InvalidInput& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expect_same_quads(const QuadMesh& a, const MeshFile& b) {
+  ASSERT_TRUE(b.is_pure_quad());
+  ASSERT_EQ(b.positions.size(), a.n_vertices());
+  ASSERT_EQ(b.quads.size(), a.n_faces());
+  for (Index v = 0; v < a.n_vertices(); ++v) EXPECT_NEAR((b.positions[v] - a.position(v)).norm(), 0, 1e-6);
+  const auto q = a.quads();
+  for (std::size_t f = 0; f < q.size(); ++f) {
+    // Same cycle, possibly starting at another corner.
+    int shift = 0;
+    while (shift < 4 && b.quads[f][shift] != q[f][0]) ++shift;
+    ASSERT_LT(shift, 4);
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(b.quads[f][(k + shift) % 4], q[f][k]);
+  }
+}
+
+}  // namespace
+
+TEST_F(MeshIo, quad_round_trip_every_output_format) {
+  QuadMesh m = grid_with_hole(4);
+  for (auto& p : const_cast<std::vector<Vec3>&>(m.positions())) p.z() = 0.1 * p.x() * p.y();
+  for (const char* ext : {"ply", "obj", "off"}) {
+    const std::string p = path(std::string("grid.") + ext);
+    write_quad_mesh(p, m);
+    SCOPED_TRACE(ext);
+    expect_same_quads(m, read_mesh(p));
+  }
+}
+
+TEST_F(MeshIo, triangle_inputs_in_every_format) {
+  const std::string ply_ascii = write("a.ply",
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  const std::string obj = write("a.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+  const std::string off = write("a.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  const std::string stl = write("a.stl",
+      "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\n"
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid a\n");
+  TriMesh t = tri_sphere(6, 8);
+  const std::string ply_binary = path("b.ply");
+  write_tri_mesh_ply(ply_binary, t);
+  for (const auto& p : {ply_ascii, obj, off, stl}) {
+    SCOPED_TRACE(p);
+    const MeshFile f = read_mesh(p);
+    EXPECT_FALSE(f.is_pure_quad());
+    EXPECT_EQ(f.triangles.size(), 2u);
+    TriMesh c = triangles_of(f);
+    clean(c);  // STL repeats vertices per facet: merged here
+    EXPECT_EQ(c.n_vertices(), 4u);
+  }
+  const MeshFile b = read_mesh(ply_binary);
+  EXPECT_EQ(b.triangles.size(), t.faces.size());
+  EXPECT_EQ(b.positions.size(), t.positions.size());
+}
+
+TEST_F(MeshIo, quads_from_polygons_and_from_faux_flags) {
+  // A quad polygon in OBJ, and MeshLab's way: two triangles whose shared edge has the
+  // faux flag (0x00040000 << edge) in a per-face "flags" property.
+  const std::string obj = write("q.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  const std::string ply = write("q.ply",
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 2\nproperty list uchar int vertex_indices\nproperty int flags\nend_header\n"
+      "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 1048576\n3 0 2 3 262144\n");
+  for (const auto& p : {obj, ply}) {
+    SCOPED_TRACE(p);
+    const MeshFile f = read_mesh(p);
+    ASSERT_TRUE(f.is_pure_quad());
+    EXPECT_EQ(f.quads.size(), 1u);
+  }
+  // A pentagon is not a quad: it is triangulated.
+  const std::string pent = write("p.obj", "v 0 0 0\nv 1 0 0\nv 2 1 0\nv 1 2 0\nv 0 1 0\nf 1 2 3 4 5\n");
+  EXPECT_FALSE(read_mesh(pent).is_pure_quad());
+  EXPECT_EQ(read_mesh(pent).triangles.size(), 3u);
+}
+
+TEST_F(MeshIo, bad_files_give_one_clear_error) {
+  EXPECT_NE(error_of(path("missing.ply")).find("no such file"), std::string::npos);
+  EXPECT_NE(error_of(write("empty.ply", "")).find("empty"), std::string::npos);
+  EXPECT_NE(error_of(write("x.xyz", "1 2 3\n")).find("unknown format"), std::string::npos);
+  EXPECT_NE(error_of(write("junk.ply", "this is not a ply file\n")).find("unreadable PLY"), std::string::npos);
+  EXPECT_NE(error_of(write("junk.off", "OFF\n3 1 0\n0 0 0\n")).find("unreadable OFF"), std::string::npos);
+
+  // Truncated binary PLY.
+  write_tri_mesh_ply(path("whole.ply"), tri_sphere(6, 8));
+  const auto size = fs::file_size(path("whole.ply"));
+  fs::copy_file(path("whole.ply"), path("cut.ply"));
+  fs::resize_file(path("cut.ply"), size - 40);
+  EXPECT_NE(error_of(path("cut.ply")).find("unreadable PLY"), std::string::npos);
+
+  // Out-of-range index.
+  const std::string bad_index = write("idx.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+  EXPECT_FALSE(error_of(bad_index).empty());
+
+  for (const std::string& e : {error_of(path("missing.ply")), error_of(path("cut.ply"))}) {
+    EXPECT_EQ(e.find(dir_.string()), 0u) << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos);
+  }
+}
+
+TEST_F(MeshIo, load_input_refuses_point_clouds_and_nan) {
+  const std::string cloud = write("cloud.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "end_header\n0 0 0\n1 0 0\n0 1 0\n");
+  EXPECT_THROW(load_input(cloud), InvalidInput);
+  const std::string nan = write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_THROW(load_input(nan), InvalidInput);
+  try {
+    load_input(cloud);
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("point cloud"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(MeshIo, writes_are_atomic_and_refuse_unknown_formats) {
+  EXPECT_THROW(write_quad_mesh(path("out.stl"), cube()), InvalidInput);
+  EXPECT_THROW(write_quad_mesh(path("no/such/dir/out.ply"), cube()), InvalidInput);
+  for (const auto& e : fs::directory_iterator(dir_)) ADD_FAILURE() << "left behind: " << e.path();
+  write_quad_mesh(path("cube.ply"), cube());
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir_)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);  // no temporary left beside it
+}
+
+TEST_F(MeshIo, fields_are_written_as_ply_properties) {
+  TriMesh t = tri_sphere(5, 6);
+  std::vector<float> s(t.n_vertices());
+  for (Index v = 0; v < t.n_vertices(); ++v) s[v] = float(v);
+  write_tri_mesh_ply(path("f.ply"), t, {{"fitmap_s", s}});
+  std::ifstream in(path("f.ply"), std::ios::binary);
+  std::string header((std::istreambuf_iterator<char>(in)), {});
+  header = header.substr(0, header.find("end_header"));
+  EXPECT_NE(header.find("property float fitmap_s"), std::string::npos);
+  EXPECT_NE(header.find("red"), std::string::npos);
+}

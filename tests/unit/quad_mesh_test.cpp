@@ -1,0 +1,159 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/mesh/quad_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "fixtures/shapes.h"
+#include "quadsimp/util/errors.h"
+
+using namespace qs;
+using namespace qs::fixtures;
+
+TEST(QuadMesh, single_quad_navigation) {
+  QuadMesh m = single_quad();
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 1u);
+  EXPECT_EQ(m.n_vertices(), 4u);
+  for (Index h = 0; h < 4; ++h) {
+    EXPECT_EQ(QuadMesh::next(QuadMesh::prev(h)), h);
+    EXPECT_EQ(QuadMesh::opposite_in_face(QuadMesh::opposite_in_face(h)), h);
+    EXPECT_TRUE(m.is_border_halfedge(h));
+    EXPECT_EQ(m.to(h), m.from(QuadMesh::next(h)));
+  }
+  for (Index v = 0; v < 4; ++v) {
+    EXPECT_TRUE(m.is_border_vertex(v));
+    EXPECT_EQ(m.valence(v), 2);  // a corner: two border edges
+  }
+  EXPECT_GT(m.face_area_normal(0).z(), 0);  // counter-clockwise seen from +z
+}
+
+TEST(QuadMesh, grid_valence_and_border) {
+  QuadMesh m = quad_grid(4, 3);
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 12u);
+  EXPECT_EQ(m.n_vertices(), 20u);
+  int inner = 0, side = 0, corner = 0;
+  for (Index v = 0; v < m.n_vertices(); ++v) {
+    const int val = m.valence(v);
+    if (!m.is_border_vertex(v)) {
+      EXPECT_EQ(val, 4);
+      ++inner;
+    } else if (val == 3) {
+      ++side;
+    } else {
+      EXPECT_EQ(val, 2);
+      ++corner;
+    }
+  }
+  EXPECT_EQ(inner, 6);
+  EXPECT_EQ(side, 10);
+  EXPECT_EQ(corner, 4);
+}
+
+TEST(QuadMesh, one_ring_is_in_fan_order) {
+  QuadMesh m = quad_grid(2, 2);
+  const Index centre = 4;
+  std::vector<Index> ring;
+  m.for_each_outgoing(centre, [&](Index h) { ring.push_back(m.to(h)); });
+  ASSERT_EQ(ring.size(), 4u);
+  // Consecutive edge neighbours are corners of one face: they are 90 degrees apart.
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Vec3 a = m.position(ring[i]) - m.position(centre);
+    const Vec3 b = m.position(ring[(i + 1) % 4]) - m.position(centre);
+    EXPECT_NEAR(a.dot(b), 0.0, 1e-12);
+    EXPECT_GT(a.cross(b).z(), 0);  // counter-clockwise
+  }
+  // A border vertex starts its fan at the border and sees its faces in order.
+  const Index side = 1;
+  std::vector<Index> faces;
+  m.for_each_outgoing(side, [&](Index h) { faces.push_back(QuadMesh::face(h)); });
+  EXPECT_EQ(faces.size(), 2u);
+  EXPECT_TRUE(m.is_border_halfedge(m.out(side)));
+}
+
+TEST(QuadMesh, cube_is_closed_and_valence_three) {
+  QuadMesh m = cube();
+  validate(m);
+  for (Index v = 0; v < 8; ++v) {
+    EXPECT_FALSE(m.is_border_vertex(v));
+    EXPECT_EQ(m.valence(v), 3);
+  }
+  for (Index h = 0; h < m.halfedge_capacity(); ++h) EXPECT_NE(m.twin(h), kNone);
+}
+
+TEST(QuadMesh, hole_has_inner_border_loop) {
+  QuadMesh m = grid_with_hole(3);
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 8u);
+  int border_edges = 0;
+  for (Index h = 0; h < m.halfedge_capacity(); ++h) border_edges += m.is_border_halfedge(h);
+  EXPECT_EQ(border_edges, 12 + 4);
+  // The four hole corners are border vertices of valence 4 (2 border + 2 inner edges).
+  for (Index v : {5u, 6u, 9u, 10u}) {
+    EXPECT_TRUE(m.is_border_vertex(v));
+    EXPECT_EQ(m.valence(v), 4);
+  }
+}
+
+TEST(QuadMesh, from_faces_refuses_bad_connectivity) {
+  std::vector<Vec3> p(8, Vec3::Zero());
+  // Three quads on one edge.
+  EXPECT_THROW(QuadMesh::from_faces(p, {{0, 1, 2, 3}, {1, 0, 4, 5}, {1, 0, 6, 7}}), InvalidInput);
+  // Opposite orientation across the shared edge.
+  EXPECT_THROW(QuadMesh::from_faces(p, {{0, 1, 2, 3}, {0, 1, 4, 5}}), InvalidInput);
+  // Repeated vertex.
+  EXPECT_THROW(QuadMesh::from_faces(p, {{0, 1, 1, 3}}), InvalidInput);
+  // Out of range.
+  EXPECT_THROW(QuadMesh::from_faces(p, {{0, 1, 2, 9}}), InvalidInput);
+  // Two quads touching at one vertex only: a bowtie.
+  EXPECT_THROW(QuadMesh::from_faces(std::vector<Vec3>(7, Vec3::Zero()), {{0, 1, 2, 3}, {0, 4, 5, 6}}), InvalidInput);
+}
+
+TEST(QuadMesh, validate_catches_corruption) {
+  {
+    QuadMesh m = quad_grid(2, 2);
+    m.set_twin(1, kNone);  // one-sided: the twin of interior half-edge 1 still points at it
+    EXPECT_THROW(validate(m), TopologyError);
+  }
+  {
+    QuadMesh m = quad_grid(2, 2);
+    m.set_origin(1, m.from(0));  // repeated vertex in face 0
+    EXPECT_THROW(validate(m), TopologyError);
+  }
+  {
+    QuadMesh m = quad_grid(2, 2);
+    // An interior out-edge on a border vertex hides part of its fan.
+    const Index side = 1;
+    m.set_out(side, m.rotate(m.out(side)));
+    EXPECT_THROW(validate(m), TopologyError);
+  }
+  {
+    QuadMesh m = quad_grid(2, 2);
+    m.kill_face(3);  // leaves vertex 8 without faces while it is still live
+    EXPECT_THROW(validate(m), TopologyError);
+  }
+}
+
+TEST(QuadMesh, kill_and_compact) {
+  QuadMesh m = quad_grid(3, 1);
+  m.kill_face(2);
+  for (Index v : {3u, 7u}) m.kill_vertex(v);
+  // Face 1 = (1, 2, 6, 5): its corners 1 and 2 are the new fans of vertices 2 and 6.
+  m.set_out(2, QuadMesh::halfedge(1, 1));
+  m.set_out(6, QuadMesh::halfedge(1, 2));
+  m.repair_out(2);
+  m.repair_out(6);
+  EXPECT_TRUE(m.is_border_halfedge(m.out(6)));
+  validate(m);
+  std::vector<Index> vmap, fmap;
+  m.compact(&vmap, &fmap);
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 2u);
+  EXPECT_EQ(m.n_vertices(), 6u);
+  EXPECT_EQ(fmap[2], kNone);
+  EXPECT_EQ(vmap[3], kNone);
+  EXPECT_EQ(vmap[4], 3u);
+  EXPECT_EQ(m.face_capacity(), 2u);
+}

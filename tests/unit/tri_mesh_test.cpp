@@ -1,0 +1,119 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/mesh/tri_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "fixtures/shapes.h"
+#include "quadsimp/util/errors.h"
+
+using namespace qs;
+using namespace qs::fixtures;
+
+namespace {
+std::string message_of(TriMesh m) {
+  try {
+    clean(m, "in.ply");
+  } catch (const InvalidInput& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(Clean, leaves_a_clean_mesh_alone) {
+  TriMesh t = tri_sphere(8, 10);
+  const TriMesh before = t;
+  const CleanReport r = clean(t);
+  EXPECT_EQ(t.faces, before.faces);
+  EXPECT_EQ(t.positions.size(), before.positions.size());
+  EXPECT_EQ(r.merged_duplicate_vertices + r.removed_degenerate_faces + r.flipped_faces, 0u);
+}
+
+TEST(Clean, repairs_and_logs) {
+  TriMesh t = tri_grid(3, 3);
+  const Index nf = t.n_faces();
+  t.positions.push_back(t.positions[0]);  // vertex 16 duplicates vertex 0; face 0 uses the copy
+  for (auto& v : t.faces[0]) v = v == 0 ? 16 : v;
+  t.positions.emplace_back(9, 9, 9);                      // unreferenced
+  t.faces.push_back(t.faces[3]);                          // duplicate face
+  t.faces.push_back({t.faces[3][2], t.faces[3][1], t.faces[3][0]});  // same face, reversed
+  t.faces.push_back({0, 0, 1});                           // repeated index
+  t.faces.push_back({0, 1, 2});                           // collinear: zero area
+  std::vector<std::string> notes;
+  const CleanReport r = clean(t, "in.ply", [&](std::string_view m) { notes.emplace_back(m); });
+  EXPECT_EQ(r.merged_duplicate_vertices, 1u);
+  EXPECT_EQ(r.removed_unreferenced_vertices, 1u);
+  EXPECT_EQ(r.removed_duplicate_faces, 2u);
+  EXPECT_EQ(r.removed_degenerate_faces, 2u);
+  EXPECT_EQ(t.n_faces(), nf);
+  EXPECT_EQ(t.n_vertices(), 16u);
+  EXPECT_GE(notes.size(), 4u);
+  EXPECT_NE(notes[0].find("in.ply"), std::string::npos);
+}
+
+TEST(Clean, orients_each_component_consistently) {
+  TriMesh t = two_spheres();
+  for (Index f = 0; f < t.n_faces(); f += 7) std::swap(t.faces[f][1], t.faces[f][2]);
+  const CleanReport r = clean(t);
+  EXPECT_GT(r.flipped_faces, 0u);
+  // Outward everywhere again: the signed volume of each sphere is positive.
+  double vol = 0;
+  for (const auto& f : t.faces) vol += t.positions[f[0]].dot(t.positions[f[1]].cross(t.positions[f[2]]));
+  EXPECT_GT(vol, 0);
+}
+
+TEST(Clean, splits_nonmanifold_vertex) {
+  // Two triangles touching at vertex 0 only.
+  TriMesh t;
+  t.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+  t.faces = {{0, 1, 2}, {0, 3, 4}};
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.split_nonmanifold_vertices, 1u);
+  EXPECT_EQ(t.n_vertices(), 6u);
+}
+
+TEST(Clean, refuses_unusable_input_with_one_sentence) {
+  TriMesh empty;
+  EXPECT_NE(message_of(empty).find("empty"), std::string::npos);
+
+  TriMesh cloud;
+  cloud.positions = {{0, 0, 0}, {1, 0, 0}};
+  EXPECT_NE(message_of(cloud).find("point cloud"), std::string::npos);
+
+  TriMesh nan = tri_grid(2, 2);
+  nan.positions[3].y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(message_of(nan).find("NaN"), std::string::npos);
+
+  TriMesh inf = tri_grid(2, 2);
+  inf.positions[1].z() = std::numeric_limits<double>::infinity();
+  EXPECT_NE(message_of(inf).find("infinite"), std::string::npos);
+
+  TriMesh range = tri_grid(2, 2);
+  range.faces[2][1] = 99;
+  EXPECT_NE(message_of(range).find("out of range"), std::string::npos);
+
+  TriMesh fin;  // three triangles on one edge
+  fin.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+  fin.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  EXPECT_NE(message_of(fin).find("non-manifold edge"), std::string::npos);
+
+  TriMesh flat;
+  flat.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+  flat.faces = {{0, 1, 2}};
+  EXPECT_NE(message_of(flat).find("degenerate"), std::string::npos);
+
+  for (const std::string& m : {message_of(empty), message_of(fin)}) {
+    EXPECT_EQ(m.rfind("in.ply: ", 0), 0u) << m;  // names the file first
+    EXPECT_EQ(m.find('\n'), std::string::npos);
+  }
+}
+
+TEST(Clean, components_are_counted) {
+  TriMesh t = two_spheres();
+  std::vector<Index> c;
+  EXPECT_EQ(face_components(t, c), 2u);
+  EXPECT_EQ(face_components(tri_torus(8, 6), c), 1u);
+}

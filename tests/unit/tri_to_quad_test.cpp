@@ -1,0 +1,135 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/convert/tri_to_quad.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <fstream>
+#include <set>
+
+#include "fixtures/shapes.h"
+#include "quadsimp/io/load_input.h"
+#include "quadsimp/io/mesh_io.h"
+
+using namespace qs;
+using namespace qs::fixtures;
+
+namespace {
+
+// Every output vertex must be an input vertex or the midpoint of an input edge,
+// so the quads lie on the input surface wherever it is flat between them.
+void expect_on_input(const TriMesh& t, const QuadMesh& q) {
+  std::set<std::array<double, 3>> allowed;
+  auto add = [&](const Vec3& p) { allowed.insert({p.x(), p.y(), p.z()}); };
+  for (const Vec3& p : t.positions) add(p);
+  for (const auto& f : t.faces)
+    for (int k = 0; k < 3; ++k) add(0.5 * (t.positions[f[k]] + t.positions[f[(k + 1) % 3]]));
+  Index off = 0;
+  for (Index v = 0; v < q.vertex_capacity(); ++v) {
+    const Vec3& p = q.position(v);
+    off += !allowed.count({p.x(), p.y(), p.z()});
+  }
+  EXPECT_EQ(off, 0u) << "vertices neither input vertices nor edge midpoints";
+}
+
+void expect_good_quads(const TriMesh& input, const QuadMesh& q) {
+  validate(q);
+  EXPECT_GT(q.n_faces(), 0u);
+  for (Index f = 0; f < q.face_capacity(); ++f) {
+    if (!q.is_face_live(f)) continue;
+    EXPECT_GT(q.face_area_normal(f).norm(), 0.0) << "degenerate quad " << f;
+  }
+  expect_on_input(input, q);
+}
+
+ConvertReport convert_and_check(TriMesh t) {
+  clean(t);
+  ConvertReport r;
+  QuadMesh q = tri_to_quad(t, {}, &r);
+  expect_good_quads(t, q);
+  EXPECT_FALSE(r.refined);
+  EXPECT_DOUBLE_EQ(r.pairing_rate(), 1.0);
+  EXPECT_EQ(r.quads, q.n_faces());
+  return r;
+}
+
+}  // namespace
+
+TEST(TriToQuad, sphere_pairs_every_triangle_without_new_vertices) {
+  const TriMesh s = tri_sphere(16, 24);
+  const ConvertReport r = convert_and_check(s);
+  EXPECT_EQ(r.quads, s.n_faces() / 2);
+  EXPECT_EQ(r.parity_splits + r.border_splits, 0u);
+}
+
+TEST(TriToQuad, torus) {
+  const TriMesh t = tri_torus(24, 12);
+  EXPECT_EQ(convert_and_check(t).quads, t.n_faces() / 2);
+}
+
+TEST(TriToQuad, open_grid_with_border) { convert_and_check(tri_grid(15, 11, 0.2)); }
+
+TEST(TriToQuad, two_components) {
+  TriMesh t = two_spheres();
+  clean(t);
+  QuadMesh q = tri_to_quad(t);
+  expect_good_quads(t, q);
+  EXPECT_EQ(q.n_faces(), t.n_faces() / 2);
+}
+
+TEST(TriToQuad, odd_open_component_gets_one_parity_split) {
+  TriMesh t = tri_grid(5, 5, 0.1);
+  t.faces.pop_back();  // 49 triangles: odd
+  const ConvertReport r = convert_and_check(t);
+  EXPECT_EQ(r.parity_splits, 1u);
+  EXPECT_EQ(r.quads, 25u);
+}
+
+TEST(TriToQuad, single_triangle_becomes_one_quad) {
+  TriMesh t;
+  t.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  t.faces = {{0, 1, 2}};
+  const ConvertReport r = convert_and_check(t);
+  EXPECT_EQ(r.quads, 1u);
+}
+
+TEST(TriToQuad, no_perfect_pairing_splits_at_the_border) {
+  // A triangle with three "ears": each ear can only pair with the centre, so no
+  // pairing covers all four; the converter must still return pure quads.
+  TriMesh t;
+  t.positions = {{0, 0, 0}, {2, 0, 0}, {1, 2, 0}, {1, -1, 0.1}, {2.2, 1.3, 0.1}, {-0.2, 1.3, 0.1}};
+  t.faces = {{0, 1, 2}, {0, 3, 1}, {1, 4, 2}, {2, 5, 0}};
+  const ConvertReport r = convert_and_check(t);
+  EXPECT_GT(r.border_splits, 0u);
+}
+
+TEST(TriToQuad, deterministic) {
+  TriMesh t = tri_grid(20, 17, 0.3);
+  clean(t);
+  EXPECT_EQ(tri_to_quad(t).quads(), tri_to_quad(t).quads());
+}
+
+TEST(TriToQuad, shared_datasets) {
+  int ran = 0;
+  for (const char* name : {"bunny", "armadillo", "fertility", "gargoyle", "moai", "pensatore"}) {
+    const std::string p = shared_dataset(name);
+    if (p.empty()) continue;
+    SCOPED_TRACE(name);
+    Input in = load_input(p);
+    expect_good_quads(in.reference, in.quads);
+    EXPECT_FALSE(in.convert.refined);
+    EXPECT_DOUBLE_EQ(in.convert.pairing_rate(), 1.0);
+    // Greedy pairing alone should already do most of the work on scans.
+    EXPECT_GT(double(in.convert.paired_greedy) / in.convert.input_triangles, 0.8);
+    ++ran;
+  }
+  if (ran == 0) GTEST_SKIP() << "../shared/datasets not found";
+}
+
+TEST(TriToQuad, stanford_bunny_from_glmark2) {
+  const std::string p = "/usr/share/glmark2/models/bunny.obj";
+  if (!std::ifstream(p)) GTEST_SKIP() << p << " not installed (glmark2-data)";
+  Input in = load_input(p);
+  expect_good_quads(in.reference, in.quads);
+  EXPECT_EQ(in.quads.n_faces(), 34833u);
+}
