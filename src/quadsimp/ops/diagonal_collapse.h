@@ -1,0 +1,39 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include "quadsimp/mesh/quad_mesh.h"
+
+namespace qs {
+
+//! Diagonal collapse [Bozzo et al. 2010, Fig. 1 left]: quad f = (a, b, c, d), with
+//! a = corner k (k = 0 or 1), loses its diagonal a-c; a and c merge into one vertex.
+//!
+//!        d                 d
+//!      /   \               |
+//!     a  f  c     ->       v        V-1, E-2, F-1
+//!      \   /               |
+//!        b                 b
+//!
+//! The survivor keeps a's id. val(v) = val(a)+val(c)-2; b and d each lose one edge
+//! (and may become doublets, which the caller cleans).
+//!
+//! Refused (false) when: f is dead; a and c are both on the border (a pinch);
+//! the link condition fails (the vertices sharing a face with a and with c are not
+//! exactly {b, d}: doubled edges, faces with a repeated vertex); b or d is an
+//! interior vertex of valence <= 2 (an uncleaned doublet).
+bool can_collapse_diagonal(const QuadMesh& mesh, Index f, Index k);
+
+//! Where the survivor goes when only topology decides: a border end keeps its place
+//! (the border stays on the input's border), otherwise the midpoint.
+Vec3 collapse_position(const QuadMesh& mesh, Index f, Index k);
+
+//! True when moving the merged vertex to `p` would fold a face around it: the
+//! normal (cross of the diagonals) of a face incident to a or c other than f turns
+//! by 90 degrees or more, or vanishes.
+bool collapse_folds(const QuadMesh& mesh, Index f, Index k, const Vec3& p);
+
+//! Performs the collapse and puts the survivor at `p`. \pre can_collapse_diagonal.
+//! \return the surviving vertex (a).
+Index collapse_diagonal(QuadMesh& mesh, Index f, Index k, const Vec3& p);
+
+}  // namespace qs

@@ -1,0 +1,87 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/ops/edge_rotation.h"
+
+#include <algorithm>
+#include <cassert>
+
+#include "quadsimp/ops/local_rewrite.h"
+
+namespace qs {
+namespace {
+
+struct Hexagon {
+  Index u, w, x1, x2, y1, y2;
+  Index f1, f2;
+};
+
+Hexagon hexagon(const QuadMesh& m, Index h) {
+  const Index g = m.twin(h);
+  Hexagon x;
+  x.f1 = QuadMesh::face(h);
+  x.f2 = QuadMesh::face(g);
+  x.u = m.from(h);
+  x.w = m.to(h);
+  x.x1 = m.to(QuadMesh::next(h));
+  x.x2 = m.from(QuadMesh::prev(h));
+  x.y1 = m.to(QuadMesh::next(g));
+  x.y2 = m.from(QuadMesh::prev(g));
+  return x;
+}
+
+int min_valence(const QuadMesh& m, Index v) { return m.is_border_vertex(v) ? 2 : 3; }
+
+}  // namespace
+
+std::array<std::array<Index, 4>, 2> rotated_faces(const QuadMesh& m, Index h, Rotation r) {
+  const Hexagon x = hexagon(m, h);
+  if (r == Rotation::Ccw) return {{{x.x1, x.x2, x.u, x.y1}, {x.y1, x.y2, x.w, x.x1}}};
+  return {{{x.x2, x.u, x.y1, x.y2}, {x.y2, x.w, x.x1, x.x2}}};
+}
+
+bool can_rotate_edge(const QuadMesh& m, Index h, Rotation r) {
+  if (h >= m.halfedge_capacity() || !m.is_face_live(QuadMesh::face(h)) || m.twin(h) == kNone) return false;
+  const Hexagon x = hexagon(m, h);
+  if (x.f1 == x.f2) return false;
+  std::array<Index, 6> c = {x.u, x.w, x.x1, x.x2, x.y1, x.y2};
+  std::sort(c.begin(), c.end());
+  if (std::adjacent_find(c.begin(), c.end()) != c.end()) return false;
+  if (m.valence(x.u) - 1 < min_valence(m, x.u) || m.valence(x.w) - 1 < min_valence(m, x.w)) return false;
+  const Index p = r == Rotation::Ccw ? x.x1 : x.x2, q = r == Rotation::Ccw ? x.y1 : x.y2;
+  bool shared = false;
+  m.for_each_outgoing(p, [&](Index e) {
+    const Index f = QuadMesh::face(e);
+    if (f == x.f1 || f == x.f2) return;
+    for (Index k = 0; k < 4; ++k) shared |= m.vertex(f, k) == q;
+  });
+  return !shared;
+}
+
+bool rotation_folds(const QuadMesh& m, Index h, Rotation r) {
+  const Hexagon x = hexagon(m, h);
+  const Vec3 ref = m.face_area_normal(x.f1) + m.face_area_normal(x.f2);
+  for (const auto& q : rotated_faces(m, h, r)) {
+    const Vec3 n = (m.position(q[2]) - m.position(q[0])).cross(m.position(q[3]) - m.position(q[1]));
+    if (n.dot(ref) <= 0 || n.squaredNorm() <= 1e-24 * ref.squaredNorm()) return true;
+    // Each new corner must turn the same way as the face (convex in its own plane).
+    for (int k = 0; k < 4; ++k) {
+      const Vec3 e1 = m.position(q[(k + 1) % 4]) - m.position(q[k]);
+      const Vec3 e0 = m.position(q[(k + 3) % 4]) - m.position(q[k]);
+      if (e1.cross(e0).dot(n) <= 0) return true;
+    }
+  }
+  return false;
+}
+
+void rotate_edge(QuadMesh& m, Index h, Rotation r) {
+  assert(can_rotate_edge(m, h, r));
+  const Hexagon x = hexagon(m, h);
+  const Index g = m.twin(h);
+  const std::array<Index, 6> outer = {m.twin(QuadMesh::next(h)), m.twin(QuadMesh::opposite_in_face(h)),
+                                      m.twin(QuadMesh::prev(h)), m.twin(QuadMesh::next(g)),
+                                      m.twin(QuadMesh::opposite_in_face(g)), m.twin(QuadMesh::prev(g))};
+  const auto quads = rotated_faces(m, h, r);
+  const Index faces[2] = {x.f1, x.f2};
+  detail::rewrite_faces(m, faces, quads.data(), 2, outer.data(), 6);
+}
+
+}  // namespace qs

@@ -1,0 +1,42 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+
+#include "quadsimp/mesh/quad_mesh.h"
+
+namespace qs {
+
+//! Edge rotation [Bozzo et al. 2010, Fig. 1 right]. The interior edge h = u->w with
+//! faces f1 = (u, w, x1, x2) and f2 = (w, u, y1, y2) spans the hexagon
+//! (w, x1, x2, u, y1, y2). The edge is replaced by one of the hexagon's other long
+//! diagonals:
+//!
+//!     x2 --- x1            x2 --- x1            x2 --- x1
+//!     |  f1  |             |    / |             | \    |
+//!     u ---- w     A:      u   /  w     B:      u  \   w
+//!     |  f2  |             |  /   |             |   \  |
+//!     y1 --- y2            y1 --- y2            y1 --- y2
+//!
+//!   A (Rotation::Ccw): new edge x1-y1, faces (x1, x2, u, y1) and (y1, y2, w, x1).
+//!   B (Rotation::Cw):  new edge x2-y2, faces (x2, u, y1, y2) and (y2, w, x1, x2).
+//! u and w lose one edge each; the two new endpoints gain one.
+enum class Rotation { Ccw, Cw };
+
+//! Refused (false) when: h is on the border; the faces are the same; the six hexagon
+//! corners are not distinct; the new endpoints already share a face outside the
+//! pair (the edge would be doubled); u or w would drop below valence 3 inside or 2
+//! on the border (rotations never make doublets).
+bool can_rotate_edge(const QuadMesh& mesh, Index h, Rotation r);
+
+//! The two faces after the rotation (in the slots of f1 and f2), without changing
+//! the mesh: for energy and geometric checks.
+std::array<std::array<Index, 4>, 2> rotated_faces(const QuadMesh& mesh, Index h, Rotation r);
+
+//! True when a rotated face would be folded or degenerate relative to the old pair.
+bool rotation_folds(const QuadMesh& mesh, Index h, Rotation r);
+
+//! Performs the rotation in place (faces keep their ids). \pre can_rotate_edge.
+void rotate_edge(QuadMesh& mesh, Index h, Rotation r);
+
+}  // namespace qs

@@ -1,0 +1,215 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/reference/reference_surface.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace qs {
+
+struct ReferenceSurface::Bvh {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::string error;
+  ~Bvh() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+namespace {
+
+// Embree reports errors through a C callback: remember the first one and throw it
+// from our own code once the call returns (never unwind through Embree).
+void embree_error(void* user, RTCError code, const char* str) {
+  auto* first = static_cast<std::string*>(user);
+  if (first->empty()) first->assign("Embree error " + std::to_string(int(code)) + ": " + (str ? str : ""));
+}
+
+struct ClosestQuery {
+  const ReferenceSurface* ref;
+  Vec3 normal;  // zero: any orientation
+  SurfacePoint* best;
+};
+
+bool closest_callback(RTCPointQueryFunctionArguments* args) {
+  auto* q = static_cast<ClosestQuery*>(args->userPtr);
+  const Index f = args->primID;
+  if (!q->normal.isZero() && q->ref->face_normal(f).dot(q->normal) <= 0) return false;
+  const auto& t = q->ref->mesh().faces[f];
+  const auto& P = q->ref->mesh().positions;
+  const Vec3 p(args->query->x, args->query->y, args->query->z);
+  double u, v;
+  const Vec3 c = closest_on_triangle(p, P[t[0]], P[t[1]], P[t[2]], u, v);
+  const double d = (c - p).norm();
+  if (d > args->query->radius || (q->best->found() && d >= q->best->distance)) return false;
+  *q->best = SurfacePoint{f, u, v, c, d};
+  args->query->radius = float(d);
+  return true;
+}
+
+}  // namespace
+
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double& u, double& v) {
+  // Voronoi-region walk (Ericson, Real-Time Collision Detection, 5.1.5).
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) { u = v = 0; return a; }
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) { u = 1; v = 0; return b; }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double t = d1 / (d1 - d3);
+    u = t; v = 0;
+    return a + t * ab;
+  }
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) { u = 0; v = 1; return c; }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double t = d2 / (d2 - d6);
+    u = 0; v = t;
+    return a + t * ac;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    u = 1 - t; v = t;
+    return b + t * (c - b);
+  }
+  const double denom = 1 / (va + vb + vc);
+  u = vb * denom;
+  v = vc * denom;
+  return a + ab * u + ac * v;
+}
+
+ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(std::make_unique<Bvh>()) {
+  const auto& P = mesh_.positions;
+  diagonal_ = qs::bbox_diagonal(P);
+  normals_.resize(mesh_.n_faces());
+  vertex_normals_.assign(mesh_.n_vertices(), Vec3::Zero());
+  double edge_sum = 0;
+  for (Index f = 0; f < mesh_.n_faces(); ++f) {
+    const auto& t = mesh_.faces[f];
+    const Vec3 n = (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]);
+    normals_[f] = n.normalized();
+    for (int k = 0; k < 3; ++k) {
+      vertex_normals_[t[k]] += n;
+      edge_sum += (P[t[k]] - P[t[(k + 1) % 3]]).norm();
+    }
+  }
+  for (Vec3& n : vertex_normals_) n.normalize();
+  mean_edge_ = mesh_.n_faces() ? edge_sum / (3.0 * mesh_.n_faces()) : 0.0;
+
+  bvh_->device = rtcNewDevice("threads=0");
+  if (!bvh_->device) throw std::runtime_error("Embree: cannot create a device");
+  rtcSetDeviceErrorFunction(bvh_->device, embree_error, &bvh_->error);
+  bvh_->scene = rtcNewScene(bvh_->device);
+  rtcSetSceneFlags(bvh_->scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(bvh_->scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geom = rtcNewGeometry(bvh_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  // Embree owns these buffers (and pads them as it needs).
+  auto* xyz = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), P.size()));
+  for (std::size_t i = 0; i < P.size(); ++i)
+    for (int k = 0; k < 3; ++k) xyz[3 * i + k] = float(P[i][k]);
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                             3 * sizeof(unsigned), mesh_.faces.size()));
+  for (std::size_t f = 0; f < mesh_.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) idx[3 * f + k] = mesh_.faces[f][k];
+  rtcCommitGeometry(geom);
+  rtcAttachGeometryByID(bvh_->scene, geom, 0);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(bvh_->scene);
+  if (!bvh_->error.empty()) throw std::runtime_error(bvh_->error);
+}
+
+ReferenceSurface::~ReferenceSurface() = default;
+
+SurfacePoint ReferenceSurface::ray_project(const Vec3& p, const Vec3& dir, double max_dist) const {
+  SurfacePoint best;
+  const double len = dir.norm();
+  if (!(len > 0) || !(max_dist > 0)) return best;
+  const Vec3 d = dir / len;
+  // Both directions; along each, skip hits whose triangle faces the other way.
+  for (double sign : {1.0, -1.0}) {
+    float tnear = 0.f;
+    for (int tries = 0; tries < 8; ++tries) {
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      RTCRayHit rh;
+      rh.ray.org_x = float(p.x());
+      rh.ray.org_y = float(p.y());
+      rh.ray.org_z = float(p.z());
+      rh.ray.dir_x = float(sign * d.x());
+      rh.ray.dir_y = float(sign * d.y());
+      rh.ray.dir_z = float(sign * d.z());
+      rh.ray.tnear = tnear;
+      rh.ray.tfar = float(std::min(max_dist, best.distance));
+      rh.ray.mask = ~0u;
+      rh.ray.flags = 0;
+      rh.ray.time = 0.f;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(bvh_->scene, &ctx, &rh);
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+      const Index f = rh.hit.primID;
+      if (normals_[f].dot(d) > 0) {
+        const auto& t = mesh_.faces[f];
+        const auto& P = mesh_.positions;
+        const double u = rh.hit.u, v = rh.hit.v;
+        const Vec3 q = (1 - u - v) * P[t[0]] + u * P[t[1]] + v * P[t[2]];
+        best = SurfacePoint{f, u, v, q, double(rh.ray.tfar)};
+        break;
+      }
+      tnear = std::nextafter(rh.ray.tfar, std::numeric_limits<float>::infinity());
+    }
+  }
+  return best;
+}
+
+SurfacePoint ReferenceSurface::closest(const Vec3& p, double max_dist, const Vec3& normal) const {
+  SurfacePoint best;
+  RTCPointQuery q;
+  q.x = float(p.x());
+  q.y = float(p.y());
+  q.z = float(p.z());
+  q.time = 0.f;
+  q.radius = std::isfinite(max_dist) ? float(max_dist) : std::numeric_limits<float>::infinity();
+  RTCPointQueryContext ctx;
+  rtcInitPointQueryContext(&ctx);
+  ClosestQuery data{this, normal, &best};
+  rtcPointQuery(bvh_->scene, &q, &ctx, closest_callback, &data);
+  if (best.found()) {
+    // Exact distance from the double-precision input point.
+    best.distance = (best.point - p).norm();
+  }
+  return best;
+}
+
+SurfacePoint ReferenceSurface::project(const Vec3& p, const Vec3& dir, double max_dist) const {
+  SurfacePoint s = ray_project(p, dir, max_dist);
+  if (s.found()) return s;
+  s = closest(p, max_dist, dir);
+  if (s.found()) return s;
+  return closest(p);
+}
+
+double ReferenceSurface::interpolate(const std::vector<float>& field, const SurfacePoint& s) const {
+  const auto& t = mesh_.faces[s.face];
+  return (1 - s.u - s.v) * field[t[0]] + s.u * field[t[1]] + s.v * field[t[2]];
+}
+
+Vec3 ReferenceSurface::normal_at(const SurfacePoint& s) const {
+  const auto& t = mesh_.faces[s.face];
+  const Vec3 n = (1 - s.u - s.v) * vertex_normals_[t[0]] + s.u * vertex_normals_[t[1]] + s.v * vertex_normals_[t[2]];
+  const double l = n.norm();
+  return l > 0 ? Vec3(n / l) : normals_[s.face];
+}
+
+}  // namespace qs

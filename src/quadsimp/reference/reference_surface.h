@@ -1,0 +1,65 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "quadsimp/mesh/tri_mesh.h"
+
+namespace qs {
+
+//! A point on the reference surface: triangle and barycentric coordinates.
+struct SurfacePoint {
+  Index face = kNone;       //!< kNone when nothing was found
+  double u = 0, v = 0;      //!< weights of corners 1 and 2 (corner 0 gets 1-u-v)
+  Vec3 point = Vec3::Zero();
+  double distance = std::numeric_limits<double>::infinity();
+  bool found() const { return face != kNone; }
+};
+
+//! The input surface M0 with an Embree 3 BVH: ray projection along a direction,
+//! closest point, and barycentric lookup of per-vertex fields. Queries are const and
+//! thread-safe. The only class that sees Embree.
+class ReferenceSurface {
+ public:
+  //! Copies the mesh (it must be clean: see clean()).
+  explicit ReferenceSurface(TriMesh mesh);
+  ~ReferenceSurface();
+  ReferenceSurface(const ReferenceSurface&) = delete;
+  ReferenceSurface& operator=(const ReferenceSurface&) = delete;
+
+  const TriMesh& mesh() const { return mesh_; }
+  double bbox_diagonal() const { return diagonal_; }
+  double mean_edge_length() const { return mean_edge_; }
+  //! Unit normal of triangle f.
+  const Vec3& face_normal(Index f) const { return normals_[f]; }
+
+  //! Nearest point hit by the line p + t*dir, |t| <= max_dist, whose triangle normal
+  //! agrees with dir (dot > 0). Falls back to the closest point within max_dist with
+  //! an agreeing normal, then to the closest point at any distance with any normal.
+  SurfacePoint project(const Vec3& p, const Vec3& dir, double max_dist) const;
+  //! Nearest point of the line only (no fallback).
+  SurfacePoint ray_project(const Vec3& p, const Vec3& dir, double max_dist) const;
+  //! Closest point within max_dist; if `normal` is nonzero, only triangles whose
+  //! normal agrees with it are considered.
+  SurfacePoint closest(const Vec3& p, double max_dist = std::numeric_limits<double>::infinity(),
+                       const Vec3& normal = Vec3::Zero()) const;
+
+  //! Linear interpolation of a per-vertex field at a surface point.
+  double interpolate(const std::vector<float>& field, const SurfacePoint& s) const;
+  //! Interpolated (area-weighted) vertex normal at a surface point.
+  Vec3 normal_at(const SurfacePoint& s) const;
+
+ private:
+  TriMesh mesh_;
+  std::vector<Vec3> normals_, vertex_normals_;
+  double diagonal_ = 0, mean_edge_ = 0;
+  struct Bvh;
+  std::unique_ptr<Bvh> bvh_;
+};
+
+//! Closest point to p on triangle (a, b, c); returns it and writes the weights of b and c.
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double& u, double& v);
+
+}  // namespace qs

@@ -1,0 +1,311 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+// Every topological operator on small hand-built meshes: effect, refusals, and
+// validate() after each step.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fixtures/shapes.h"
+#include "quadsimp/convert/tri_to_quad.h"
+#include "quadsimp/ops/cleaning.h"
+#include "quadsimp/ops/diagonal_collapse.h"
+#include "quadsimp/ops/doublet.h"
+#include "quadsimp/ops/edge_rotation.h"
+#include "quadsimp/ops/singlet.h"
+#include "quadsimp/util/errors.h"
+
+using namespace qs;
+using namespace qs::fixtures;
+
+namespace {
+
+Index face_with_corners(const QuadMesh& m, std::initializer_list<Index> vs) {
+  for (Index f = 0; f < m.face_capacity(); ++f) {
+    if (!m.is_face_live(f)) continue;
+    bool all = true;
+    for (Index v : vs) {
+      bool in = false;
+      for (Index k = 0; k < 4; ++k) in |= m.vertex(f, k) == v;
+      all &= in;
+    }
+    if (all) return f;
+  }
+  return kNone;
+}
+
+Index corner_of(const QuadMesh& m, Index f, Index v) {
+  for (Index k = 0; k < 4; ++k)
+    if (m.vertex(f, k) == v) return k;
+  return kNone;
+}
+
+Index halfedge_between(const QuadMesh& m, Index a, Index b) {
+  for (Index h = 0; h < m.halfedge_capacity(); ++h)
+    if (m.is_face_live(QuadMesh::face(h)) && m.from(h) == a && m.to(h) == b) return h;
+  return kNone;
+}
+
+}  // namespace
+
+// 3x3 grid, vertex ids:
+//  12 13 14 15
+//   8  9 10 11
+//   4  5  6  7
+//   0  1  2  3
+TEST(DiagonalCollapse, centre_face_of_grid) {
+  QuadMesh m = quad_grid(3, 3);
+  const Index f = face_with_corners(m, {5, 6, 10, 9});
+  const Index k = corner_of(m, f, 5);  // diagonal 5-10
+  ASSERT_TRUE(can_collapse_diagonal(m, f, k));
+  EXPECT_FALSE(collapse_folds(m, f, k, collapse_position(m, f, k)));
+  const Index v = collapse_diagonal(m, f, k, collapse_position(m, f, k));
+  validate(m);
+  EXPECT_EQ(v, 5u);
+  EXPECT_EQ(m.n_faces(), 8u);
+  EXPECT_EQ(m.n_vertices(), 15u);
+  EXPECT_FALSE(m.is_vertex_live(10));
+  EXPECT_EQ(m.valence(5), 4 + 4 - 2);
+  EXPECT_EQ(m.valence(6), 3);
+  EXPECT_EQ(m.valence(9), 3);
+  EXPECT_TRUE(m.position(5).isApprox(Vec3(1.5, 1.5, 0)));
+}
+
+TEST(DiagonalCollapse, border_end_keeps_its_position) {
+  QuadMesh m = quad_grid(3, 3);
+  const Index f = face_with_corners(m, {1, 2, 6, 5});
+  const Index k = corner_of(m, f, 1);  // 1 is on the border, 6 inside
+  ASSERT_TRUE(can_collapse_diagonal(m, f, k));
+  EXPECT_TRUE(collapse_position(m, f, k).isApprox(m.position(1)));
+  const Index v = collapse_diagonal(m, f, k, collapse_position(m, f, k));
+  validate(m);
+  EXPECT_TRUE(m.is_border_vertex(v));
+  EXPECT_EQ(m.n_faces(), 8u);
+}
+
+TEST(DiagonalCollapse, refusals) {
+  // Both ends on the border: a pinch.
+  QuadMesh one = single_quad();
+  EXPECT_FALSE(can_collapse_diagonal(one, 0, 0));
+  QuadMesh g = quad_grid(3, 3);
+  const Index f = face_with_corners(g, {0, 1, 5, 4});
+  EXPECT_FALSE(can_collapse_diagonal(g, f, corner_of(g, f, 1)));  // 1-4: both border
+  EXPECT_TRUE(can_collapse_diagonal(g, f, corner_of(g, f, 0)));   // 0-5: 5 is inside
+  // Link condition: on a cube every diagonal's ends share more than b and d.
+  QuadMesh c = cube();
+  for (Index ff = 0; ff < 6; ++ff)
+    for (Index k = 0; k < 2; ++k) EXPECT_FALSE(can_collapse_diagonal(c, ff, k));
+  // Dead face.
+  g.kill_face(0);
+  EXPECT_FALSE(can_collapse_diagonal(g, 0, 0));
+}
+
+namespace {
+// A 3x3 grid whose centre face is replaced by a doublet: s inside (5, 6, 10, 9)
+// with faces (s, 5, 6, 10) and (s, 10, 9, 5).
+QuadMesh grid_with_doublet(Index* s_out) {
+  QuadMesh g = quad_grid(3, 3);
+  auto quads = g.quads();
+  auto pos = g.positions();
+  quads.erase(quads.begin() + face_with_corners(g, {5, 6, 10, 9}));
+  pos.emplace_back(1.4, 1.6, 0);
+  const Index s = Index(pos.size() - 1);
+  quads.push_back({s, 5, 6, 10});
+  quads.push_back({s, 10, 9, 5});
+  *s_out = s;
+  return QuadMesh::from_faces(pos, quads);
+}
+}  // namespace
+
+TEST(DiagonalCollapse, refuses_next_to_an_uncleaned_doublet) {
+  Index s;
+  QuadMesh m = grid_with_doublet(&s);
+  validate(m);
+  ASSERT_TRUE(is_doublet(m, s));
+  // Face (s, 5, 6, 10), diagonal 5-10: s would be left with valence 1.
+  const Index f = face_with_corners(m, {s, 5, 6, 10});
+  EXPECT_FALSE(can_collapse_diagonal(m, f, corner_of(m, f, 5)));
+  // Diagonal s-6 of the same face is fine: it merges s into 6 and removes the doublet.
+  const Index k = corner_of(m, f, s);
+  ASSERT_TRUE(can_collapse_diagonal(m, f, k));
+  collapse_diagonal(m, f, k, m.position(6));
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 9u);
+}
+
+TEST(DiagonalCollapse, folds_are_detected) {
+  QuadMesh m = quad_grid(3, 3);
+  const Index f = face_with_corners(m, {5, 6, 10, 9});
+  const Index k = corner_of(m, f, 5);
+  EXPECT_TRUE(collapse_folds(m, f, k, Vec3(-5, 1.5, 0)));  // far outside its ring
+  EXPECT_FALSE(collapse_folds(m, f, k, Vec3(1.4, 1.6, 0)));
+}
+
+TEST(EdgeRotation, both_directions_on_a_grid) {
+  for (Rotation r : {Rotation::Ccw, Rotation::Cw}) {
+    QuadMesh m = quad_grid(3, 3);
+    const Index h = halfedge_between(m, 5, 6);  // interior edge, faces below and above
+    ASSERT_NE(h, kNone);
+    ASSERT_TRUE(can_rotate_edge(m, h, r));
+    const auto faces = rotated_faces(m, h, r);
+    rotate_edge(m, h, r);
+    validate(m);
+    EXPECT_EQ(m.n_faces(), 9u);
+    EXPECT_EQ(m.valence(5), 3);
+    EXPECT_EQ(m.valence(6), 3);
+    // The two new endpoints are the first corners of the new faces.
+    EXPECT_EQ(m.valence(faces[0][0]), faces[0][0] == 1 || faces[0][0] == 2 ? 4 : 5);
+    EXPECT_NE(halfedge_between(m, faces[0][0], faces[1][0]), kNone);
+    EXPECT_EQ(halfedge_between(m, 5, 6), kNone);
+  }
+}
+
+TEST(EdgeRotation, refusals) {
+  QuadMesh m = quad_grid(3, 3);
+  EXPECT_FALSE(can_rotate_edge(m, halfedge_between(m, 0, 1), Rotation::Ccw));  // border edge
+  QuadMesh c = cube();  // every vertex has valence 3: a rotation would make a doublet
+  for (Index h = 0; h < c.halfedge_capacity(); ++h) {
+    EXPECT_FALSE(can_rotate_edge(c, h, Rotation::Ccw));
+    EXPECT_FALSE(can_rotate_edge(c, h, Rotation::Cw));
+  }
+  // A border vertex of valence 3 may drop to 2; an inner one of valence 3 may not.
+  QuadMesh g = quad_grid(2, 2);
+  EXPECT_TRUE(can_rotate_edge(g, halfedge_between(g, 4, 1), Rotation::Ccw));
+}
+
+TEST(EdgeRotation, rotation_and_back_restores_valences) {
+  QuadMesh m = quad_grid(4, 4);
+  std::vector<int> before;
+  for (Index v = 0; v < m.n_vertices(); ++v) before.push_back(m.valence(v));
+  const Index h = halfedge_between(m, 6, 7);
+  const auto nf = rotated_faces(m, h, Rotation::Ccw);
+  rotate_edge(m, h, Rotation::Ccw);
+  validate(m);
+  // The new edge runs between the new faces' first corners; rotating it the other way
+  // brings back the old valences.
+  const Index back = halfedge_between(m, nf[0][0], nf[1][0]);
+  ASSERT_NE(back, kNone);
+  Rotation undo = Rotation::Cw;
+  if (!can_rotate_edge(m, back, undo)) undo = Rotation::Ccw;
+  rotate_edge(m, back, undo);
+  validate(m);
+  std::vector<int> after;
+  for (Index v = 0; v < m.n_vertices(); ++v) after.push_back(m.valence(v));
+  EXPECT_EQ(before, after);
+}
+
+TEST(Doublet, two_faces_merge) {
+  std::vector<Vec3> p = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {1, 1, 0}};
+  QuadMesh m = QuadMesh::from_faces(p, {{4, 3, 0, 1}, {4, 1, 2, 3}});
+  ASSERT_TRUE(is_doublet(m, 4));
+  ASSERT_TRUE(can_remove_doublet(m, 4));
+  remove_doublet(m, 4);
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 1u);
+  EXPECT_EQ(m.n_vertices(), 4u);
+  for (Index v = 0; v < 4; ++v) EXPECT_EQ(m.valence(v), 2);
+}
+
+TEST(Doublet, inside_a_ring_and_refusals) {
+  Index s;
+  QuadMesh m = grid_with_doublet(&s);
+  validate(m);
+  ASSERT_TRUE(is_doublet(m, s));
+  EXPECT_FALSE(is_doublet(m, 0));  // a border corner of valence 2 is not a doublet
+  EXPECT_FALSE(is_doublet(m, 5));
+  CleanCounts counts;
+  std::vector<Index> work = {s};
+  clean_from(m, work, counts);
+  validate(m);
+  EXPECT_EQ(counts.doublets, 1u);
+  EXPECT_EQ(m.n_faces(), 9u);
+  EXPECT_EQ(m.valence(5), 4);
+}
+
+TEST(Doublet, chain_is_removed_recursively) {
+  // s=5 is a doublet between faces (5,4,1,2) and (5,2,3,4); p=4 has valence 3 and
+  // drops to 2 when s goes: a second doublet, found only through the worklist.
+  std::vector<Vec3> p = {{0, 0, 0}, {3, 0, 0}, {3, 3, 0}, {0, 3, 0}, {1.5, 1.5, 0}, {2.2, 1.9, 0}};
+  QuadMesh m = QuadMesh::from_faces(p, {{0, 1, 4, 3}, {5, 4, 1, 2}, {5, 2, 3, 4}});
+  validate(m);
+  ASSERT_TRUE(is_doublet(m, 5));
+  ASSERT_FALSE(is_doublet(m, 4));
+  CleanCounts counts;
+  std::vector<Index> work = {5};
+  clean_from(m, work, counts);
+  validate(m);
+  EXPECT_EQ(counts.doublets, 2u);
+  EXPECT_EQ(m.n_faces(), 1u);
+  EXPECT_EQ(m.n_vertices(), 4u);
+}
+
+TEST(Doublet, pillow_is_refused) {
+  std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  QuadMesh m = QuadMesh::from_faces(p, {{0, 1, 2, 3}, {0, 3, 2, 1}});
+  validate(m);
+  EXPECT_TRUE(is_doublet(m, 0));
+  EXPECT_FALSE(can_remove_doublet(m, 0));
+}
+
+TEST(Singlet, face_with_two_edges_between_p_and_x_is_removed) {
+  // F_top = (p, x, t1, t2) above, F_bot = (x, p, b1, b2) below, and between them the
+  // singlet face (p, s, p, x) glued to both: it has two p-x edges.
+  const Index p = 0, x = 1, t1 = 2, t2 = 3, b1 = 4, b2 = 5;
+  std::vector<Vec3> pos = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, -1, 0}, {1, -1, 0}};
+  QuadMesh m = QuadMesh::from_faces(pos, {{p, x, t1, t2}, {x, p, b1, b2}});
+  const Index top_px = halfedge_between(m, p, x), bot_xp = halfedge_between(m, x, p);
+  m.set_twin(top_px, kNone);
+  m.set_twin(bot_xp, kNone);
+  const Index s = m.add_vertex(Vec3(0.3, 0.0, 0.1));
+  const Index f = m.add_face({p, s, p, x});
+  m.set_twin(QuadMesh::halfedge(f, 0), QuadMesh::halfedge(f, 1));  // p->s with s->p
+  m.set_twin(QuadMesh::halfedge(f, 2), bot_xp);                    // p->x with x->p below
+  m.set_twin(QuadMesh::halfedge(f, 3), top_px);                    // x->p with p->x above
+  m.set_out(s, QuadMesh::halfedge(f, 1));
+  ASSERT_TRUE(is_singlet(m, s));
+  EXPECT_THROW(validate(m), TopologyError);  // the face repeats p
+  EXPECT_EQ(remove_singlet(m, s), p);
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 2u);
+  EXPECT_EQ(m.twin(top_px), bot_xp);
+  EXPECT_FALSE(is_singlet(m, p));
+}
+
+TEST(Operators, random_sequences_keep_every_invariant) {
+  std::vector<QuadMesh> meshes;
+  for (TriMesh t : {tri_sphere(10, 14), tri_torus(16, 10), tri_grid(9, 8, 0.3), two_spheres()}) {
+    clean(t);
+    meshes.push_back(tri_to_quad(t));
+  }
+  meshes.push_back(quad_grid(6, 5));
+  meshes.push_back(grid_with_hole(7));
+  std::mt19937 rng(7);
+  for (QuadMesh& m : meshes) {
+    CleanCounts counts = clean_all(m);
+    (void)counts;
+    validate(m);
+    int done = 0;
+    for (int step = 0; step < 400; ++step) {
+      const Index f = std::uniform_int_distribution<Index>(0, m.face_capacity() - 1)(rng);
+      if (!m.is_face_live(f)) continue;
+      if (step % 2 == 0) {
+        const Index k = step % 4 == 0 ? 0 : 1;
+        if (!can_collapse_diagonal(m, f, k)) continue;
+        const Index v = collapse_diagonal(m, f, k, collapse_position(m, f, k));
+        std::vector<Index> work = {v};
+        m.for_each_outgoing(v, [&](Index h) { work.push_back(m.to(h)); });
+        CleanCounts c;
+        clean_from(m, work, c);
+      } else {
+        const Index h = QuadMesh::halfedge(f, step % 4);
+        const Rotation r = step % 3 ? Rotation::Ccw : Rotation::Cw;
+        if (!can_rotate_edge(m, h, r)) continue;
+        rotate_edge(m, h, r);
+      }
+      ++done;
+      ASSERT_NO_THROW(validate(m)) << "after operation " << done;
+    }
+    EXPECT_GT(done, 20);
+    m.compact();
+    validate(m);
+  }
+}
