@@ -8,7 +8,12 @@
 
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
+#include "quadsimp/metrics/metrics.h"
+#include "quadsimp/reference/reference_surface.h"
+#include "quadsimp/simplify/simplify.h"
 #include "quadsimp/util/errors.h"
+
+#include <unistd.h>
 
 namespace qs::cli {
 namespace {
@@ -16,6 +21,35 @@ namespace {
 LogFn stderr_log(bool quiet) {
   if (quiet) return {};
   return [](std::string_view m) { std::cerr << "note: " << m << "\n"; };
+}
+
+// A one-line bar on a terminal, nothing when stderr is piped.
+ProgressFn progress_bar(bool quiet) {
+  if (quiet || !::isatty(STDERR_FILENO)) return {};
+  return [last = -1](float f, std::string_view stage) mutable {
+    const int pct = int(f * 100);
+    if (pct == last) return true;
+    last = pct;
+    const int w = 40, filled = pct * w / 100;
+    std::fprintf(stderr, "\r%-10.*s [%.*s%*s] %3d%%", int(stage.size()), stage.data(), filled,
+                 "########################################", w - filled, "", pct);
+    if (pct >= 100) std::fprintf(stderr, "\n");
+    return true;
+  };
+}
+
+void print_quality(const QuadQuality& q, const SurfaceDistance* d) {
+  std::printf("faces %u, vertices %u, pure quad: yes\n", q.faces, q.vertices);
+  std::printf("valence: max %d (interior %d), regular %.1f%% (valence 4 inside, 3 on the border), valence-4 %.1f%%\n",
+              q.max_valence, q.max_valence_interior, q.regular_percent, q.valence4_percent);
+  std::printf("homeometry: min %.3f max %.3f (edges only: %.3f .. %.3f)\n", q.homeometry_min, q.homeometry_max,
+              q.edge_ratio_min, q.edge_ratio_max);
+  std::printf("non-convex faces %u, flipped faces %u\n", q.nonconvex_faces, q.flipped_faces);
+  if (d)
+    std::printf("distance x1e-3 of the bbox diagonal: Hausdorff %.3f, RMS %.3f, mean out->in %.3f "
+                "(max out->in %.3f, in->out %.3f), projectability %.2f%%\n",
+                1e3 * d->hausdorff, 1e3 * d->rms, 1e3 * d->mean_to_ref, 1e3 * d->max_to_ref, 1e3 * d->max_from_ref,
+                100 * d->projectability);
 }
 
 }  // namespace
@@ -56,6 +90,76 @@ int run_convert(const ConvertArgs& a) {
     return kOk;
   } catch (const InvalidInput& e) {
     std::cerr << "quadsimp convert: " << e.what() << "\n";
+    return kBadInput;
+  }
+}
+
+int run_simplify(const SimplifyArgs& a) {
+  if (auto err = check_output_path(a.input, a.output); !err.empty()) {
+    std::cerr << "quadsimp simplify: " << err << "\n";
+    return kBadArguments;
+  }
+  if (!a.adaptive && (a.faces == 0 || a.auto_halt)) {
+    std::cerr << "quadsimp simplify: give --faces N (--auto-halt needs --adaptive)\n";
+    return kBadArguments;
+  }
+  if (a.adaptive) {
+    std::cerr << "quadsimp simplify: --adaptive is not available yet (fitmaps are not implemented)\n";
+    return kBadArguments;
+  }
+  try {
+    const auto t0 = std::chrono::steady_clock::now();
+    Input in = load_input(a.input, {}, stderr_log(a.quiet));
+    const ReferenceSurface ref(std::move(in.reference));
+    SimplifyOptions opt;
+    opt.target_faces = a.faces;
+    opt.progress = progress_bar(a.quiet);
+    const SimplifyReport r = simplify(in.quads, ref, opt);
+    write_quad_mesh(a.output, in.quads);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const QuadQuality q = quad_quality(in.quads);
+    std::printf("%s -> %s: %u faces, regular %.1f%%, max valence %d, %.2f s (%u collapses, %u rotations)\n",
+                a.input.c_str(), a.output.c_str(), q.faces, q.regular_percent, q.max_valence, s, r.collapses,
+                r.rotations);
+    if (a.stats) {
+      const SurfaceDistance d = surface_distance(in.quads, ref, a.samples);
+      print_quality(quad_quality(in.quads, &ref), &d);
+    }
+    return kOk;
+  } catch (const InvalidInput& e) {
+    std::cerr << "quadsimp simplify: " << e.what() << "\n";
+    return kBadInput;
+  }
+}
+
+int run_stats(const StatsArgs& a) {
+  try {
+    MeshFile file = read_mesh(a.quads);
+    if (!file.is_pure_quad()) {
+      if (a.json) std::printf("{\"pure_quad\": false, \"faces\": %zu}\n", file.triangles.size() + file.quads.size());
+      std::cerr << "quadsimp stats: " << a.quads << " is not a pure quad mesh (" << file.triangles.size()
+                << " triangles)\n";
+      return kBadInput;
+    }
+    QuadMesh quads;
+    try {
+      quads = QuadMesh::from_faces(std::move(file.positions), file.quads);
+      validate(quads);
+    } catch (const std::exception& e) {
+      throw InvalidInput(a.quads + ": not a valid quad mesh (" + e.what() + ")");
+    }
+    TriMesh tri = triangles_of(read_mesh(a.reference));
+    clean(tri, a.reference);
+    const ReferenceSurface ref(std::move(tri));
+    const QuadQuality q = quad_quality(quads, &ref);
+    const SurfaceDistance d = surface_distance(quads, ref, a.samples);
+    if (a.json)
+      std::printf("%s\n", to_json(q, &d).c_str());
+    else
+      print_quality(q, &d);
+    return kOk;
+  } catch (const InvalidInput& e) {
+    std::cerr << "quadsimp stats: " << e.what() << "\n";
     return kBadInput;
   }
 }

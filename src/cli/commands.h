@@ -14,6 +14,22 @@ struct ConvertArgs {
 };
 int run_convert(const ConvertArgs& args);
 
+struct SimplifyArgs {
+  std::string input, output;
+  unsigned faces = 0;
+  bool adaptive = false, auto_halt = false, stats = false, quiet = false;
+  double tau = 0.05;
+  unsigned samples = 1000000;
+};
+int run_simplify(const SimplifyArgs& args);
+
+struct StatsArgs {
+  std::string reference, quads;
+  bool json = false;
+  unsigned samples = 1000000;
+};
+int run_stats(const StatsArgs& args);
+
 //! Refuses to write over the input; returns an error message or "".
 std::string check_output_path(const std::string& input, const std::string& output);
 

@@ -17,6 +17,25 @@ int main(int argc, char** argv) {
   c->add_option("OUT", convert.output, "output quad mesh (.ply, .obj or .off)")->required();
   c->add_flag("-q,--quiet", convert.quiet, "no notes on stderr");
 
+  SimplifyArgs simp;
+  auto* s = app.add_subcommand("simplify", "Simplify a triangle or quad mesh into a coarser pure quad mesh");
+  s->add_option("IN", simp.input, "input mesh (PLY, OBJ, OFF, STL; triangles or quads)")->required()->check(CLI::ExistingFile);
+  s->add_option("OUT", simp.output, "output quad mesh (.ply, .obj or .off)")->required();
+  s->add_option("-f,--faces", simp.faces, "target number of quads")->check(CLI::PositiveNumber);
+  s->add_flag("--adaptive", simp.adaptive, "adaptive mode driven by fitmaps");
+  s->add_flag("--auto-halt", simp.auto_halt, "adaptive: stop when no feasible collapse remains");
+  s->add_option("--tau", simp.tau, "adaptive: M-fitmap tolerance (share of inconsistent area)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  s->add_flag("--stats", simp.stats, "print quality and distance metrics of the result");
+  s->add_option("--samples", simp.samples, "distance samples per surface for --stats")->capture_default_str();
+  s->add_flag("-q,--quiet", simp.quiet, "no progress bar and no notes");
+
+  StatsArgs stats;
+  auto* st = app.add_subcommand("stats", "Quality of a quad mesh and its distance to a reference surface");
+  st->add_option("REF", stats.reference, "reference (input) mesh")->required()->check(CLI::ExistingFile);
+  st->add_option("QUAD", stats.quads, "quad mesh to measure")->required()->check(CLI::ExistingFile);
+  st->add_flag("--json", stats.json, "one JSON object on stdout");
+  st->add_option("--samples", stats.samples, "distance samples per surface")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -25,6 +44,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (*c) return run_convert(convert);
+    if (*s) return run_simplify(simp);
+    if (*st) return run_stats(stats);
   } catch (const std::exception& e) {
     std::cerr << "quadsimp: internal error: " << e.what() << "\n";
     return 3;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 
+#include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/ops/local_rewrite.h"
 
 namespace qs {
@@ -49,9 +50,7 @@ bool collapse_folds(const QuadMesh& m, Index f, Index k, const Vec3& p) {
         const Index v = m.vertex(g, i);
         q[i] = (v == a || v == c) ? p : m.position(v);
       }
-      const Vec3 before = m.face_area_normal(g);
-      const Vec3 after = (q[2] - q[0]).cross(q[3] - q[1]);
-      if (after.dot(before) <= 0 || after.squaredNorm() <= 1e-24 * before.squaredNorm()) folds = true;
+      if (!quad_keeps_orientation(q[0], q[1], q[2], q[3], m.face_area_normal(g))) folds = true;
     });
   }
   return folds;

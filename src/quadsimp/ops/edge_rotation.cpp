@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 
+#include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/ops/local_rewrite.h"
 
 namespace qs {
@@ -60,14 +61,8 @@ bool rotation_folds(const QuadMesh& m, Index h, Rotation r) {
   const Hexagon x = hexagon(m, h);
   const Vec3 ref = m.face_area_normal(x.f1) + m.face_area_normal(x.f2);
   for (const auto& q : rotated_faces(m, h, r)) {
-    const Vec3 n = (m.position(q[2]) - m.position(q[0])).cross(m.position(q[3]) - m.position(q[1]));
-    if (n.dot(ref) <= 0 || n.squaredNorm() <= 1e-24 * ref.squaredNorm()) return true;
-    // Each new corner must turn the same way as the face (convex in its own plane).
-    for (int k = 0; k < 4; ++k) {
-      const Vec3 e1 = m.position(q[(k + 1) % 4]) - m.position(q[k]);
-      const Vec3 e0 = m.position(q[(k + 3) % 4]) - m.position(q[k]);
-      if (e1.cross(e0).dot(n) <= 0) return true;
-    }
+    const Vec3 &p0 = m.position(q[0]), &p1 = m.position(q[1]), &p2 = m.position(q[2]), &p3 = m.position(q[3]);
+    if (!quad_keeps_orientation(p0, p1, p2, p3, ref) || !quad_is_convex(p0, p1, p2, p3)) return true;
   }
   return false;
 }

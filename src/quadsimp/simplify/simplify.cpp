@@ -1,0 +1,402 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/simplify/simplify.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+
+#include "quadsimp/mesh/quad_geometry.h"
+#include "quadsimp/ops/cleaning.h"
+#include "quadsimp/ops/diagonal_collapse.h"
+#include "quadsimp/ops/edge_rotation.h"
+#include "quadsimp/util/errors.h"
+
+namespace qs {
+namespace {
+
+constexpr double kSqrt2 = 1.4142135623730951;
+
+// One candidate collapse: diagonal k (corners k, k+2) of `face`, valid while the
+// face's version is unchanged (lazy invalidation).
+struct Entry {
+  float key;
+  Index face;
+  std::uint32_t version;
+  std::uint32_t k;
+};
+struct LaterFirst {  // makes std::*_heap a min-heap, ties broken by ids
+  bool operator()(const Entry& a, const Entry& b) const {
+    if (a.key != b.key) return a.key > b.key;
+    if (a.face != b.face) return a.face > b.face;
+    return a.k > b.k;
+  }
+};
+
+class Simplifier {
+ public:
+  Simplifier(QuadMesh& m, const ReferenceSurface& ref, const SimplifyOptions& opt)
+      : m_(m), ref_(ref), opt_(opt) {}
+
+  SimplifyReport run();
+
+ private:
+  float key(Index f, Index k) const;
+  void push_face(Index f);
+  bool place(Index f, Index k, Vec3& pos) const;
+  bool m_fitmap_allows(Index f, Index k, const Vec3& pos) const;
+  void cycle(Index f, Index k, const Vec3& pos);
+  void add_faces_around(Index v, std::vector<Index>& faces);
+  void rotate_in_region();
+  bool try_rotate(Index h);
+  void smooth_region();
+  void smooth_vertex(Index v);
+  Vec3 vertex_normal(Index v) const;
+  bool moved_faces_ok(Index v, const Vec3& p) const;
+  int target_valence(Index v) const { return m_.is_border_vertex(v) ? 3 : 4; }
+  void requeue_region();
+  void rebuild_heap();
+  double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n) const;
+
+  QuadMesh& m_;
+  const ReferenceSurface& ref_;
+  const SimplifyOptions& opt_;
+  SimplifyReport rep_;
+  double mu_ = 0;
+  std::vector<std::uint32_t> version_, face_mark_, vertex_mark_;
+  std::uint32_t stamp_ = 0;
+  std::vector<Entry> heap_;
+  std::vector<Index> region_faces_, region_verts_, work_, cand_;
+};
+
+double norm_of_diagonal(const QuadMesh& m, Index f, Index k) {
+  return (m.position(m.vertex(f, k)) - m.position(m.vertex(f, k + 2))).norm();
+}
+
+double Simplifier::sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n) const {
+  const SurfacePoint s = ref_.project(p, n, 4 * mu_);
+  return s.found() ? ref_.interpolate(field, s) : 0.0;
+}
+
+float Simplifier::key(Index f, Index k) const {
+  const double d = norm_of_diagonal(m_, f, k);
+  if (!opt_.adaptive) return float(d);
+  const double fs = sample_fitmap(opt_.fitmaps->s, m_.face_centroid(f), m_.face_area_normal(f));
+  return float(d * fs);
+}
+
+void Simplifier::push_face(Index f) {
+  const std::uint32_t v = ++version_[f];
+  for (Index k = 0; k < 2; ++k) {
+    heap_.push_back({key(f, k), f, v, k});
+    std::push_heap(heap_.begin(), heap_.end(), LaterFirst{});
+  }
+}
+
+void Simplifier::rebuild_heap() {
+  heap_.clear();
+  for (Index f = 0; f < m_.face_capacity(); ++f)
+    if (m_.is_face_live(f)) {
+      ++version_[f];
+      for (Index k = 0; k < 2; ++k) heap_.push_back({key(f, k), f, version_[f], k});
+    }
+  std::make_heap(heap_.begin(), heap_.end(), LaterFirst{});
+}
+
+Vec3 Simplifier::vertex_normal(Index v) const {
+  Vec3 n = Vec3::Zero();
+  m_.for_each_outgoing(v, [&](Index h) { n += m_.face_area_normal(QuadMesh::face(h)); });
+  return n;
+}
+
+// Where the merged vertex goes: the midpoint re-projected onto M0 along the normal
+// of the current mesh there (the faces around both ends), or the border end.
+bool Simplifier::place(Index f, Index k, Vec3& pos) const {
+  const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
+  pos = collapse_position(m_, f, k);
+  if (!m_.is_border_vertex(a) && !m_.is_border_vertex(c)) {
+    const Vec3 n = vertex_normal(a) + vertex_normal(c);
+    const SurfacePoint s = ref_.project(pos, n, 2 * norm_of_diagonal(m_, f, k));
+    if (s.found() && !collapse_folds(m_, f, k, s.point)) {
+      pos = s.point;
+      return true;
+    }
+  }
+  return !collapse_folds(m_, f, k, pos);
+}
+
+// [paper 3.3] No face the collapse enlarges may have a radius (largest centre-to-
+// corner distance) above F_M at its centre. The faces are those around a and c
+// after the merge, with the survivor at `pos`.
+bool Simplifier::m_fitmap_allows(Index f, Index k, const Vec3& pos) const {
+  const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
+  bool ok = true;
+  for (Index x : {a, c}) {
+    m_.for_each_outgoing(x, [&](Index h) {
+      const Index g = QuadMesh::face(h);
+      if (g == f || !ok) return;
+      Vec3 q[4];
+      for (Index i = 0; i < 4; ++i) {
+        const Index v = m_.vertex(g, i);
+        q[i] = (v == a || v == c) ? pos : m_.position(v);
+      }
+      const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+      double radius = 0;
+      for (const Vec3& p : q) radius = std::max(radius, (p - centre).norm());
+      const double fm = sample_fitmap(opt_.fitmaps->m, centre, quad_normal(q[0], q[1], q[2], q[3]));
+      if (radius * opt_.m_factor > fm) ok = false;
+    });
+  }
+  return ok;
+}
+
+void Simplifier::add_faces_around(Index v, std::vector<Index>& faces) {
+  if (v == kNone || !m_.is_vertex_live(v)) return;
+  m_.for_each_outgoing(v, [&](Index h) { faces.push_back(QuadMesh::face(h)); });
+}
+
+bool Simplifier::try_rotate(Index h) {
+  if (!m_.is_face_live(QuadMesh::face(h)) || m_.twin(h) == kNone) return false;
+  const Index g = m_.twin(h);
+  const Index u = m_.from(h), w = m_.to(h);
+  const Index x1 = m_.to(QuadMesh::next(h)), x2 = m_.from(QuadMesh::prev(h));
+  const Index y1 = m_.to(QuadMesh::next(g)), y2 = m_.from(QuadMesh::prev(g));
+  auto dev = [&](Index v, int delta) { return std::abs(m_.valence(v) + delta - target_valence(v)); };
+  const int base = dev(x2, 0) + dev(y2, 0) + dev(x1, 0) + dev(y1, 0);
+  const int keep = dev(u, 0) + dev(w, 0) + base;
+  const int lose = dev(u, -1) + dev(w, -1);
+  const int e_a = lose + dev(x1, 1) + dev(y1, 1) + dev(x2, 0) + dev(y2, 0);
+  const int e_b = lose + dev(x2, 1) + dev(y2, 1) + dev(x1, 0) + dev(y1, 0);
+  if (std::min(e_a, e_b) >= keep) return false;
+  // Prefer the lower energy; on a tie the shorter new edge.
+  Rotation first = Rotation::Ccw, second = Rotation::Cw;
+  const double la = (m_.position(x1) - m_.position(y1)).squaredNorm();
+  const double lb = (m_.position(x2) - m_.position(y2)).squaredNorm();
+  if (e_b < e_a || (e_b == e_a && lb < la)) std::swap(first, second);
+  const int e_second = second == Rotation::Ccw ? e_a : e_b;
+  for (Rotation r : {first, second}) {
+    if (r == second && e_second >= keep) break;
+    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r)) continue;
+    const Index f1 = QuadMesh::face(h), f2 = QuadMesh::face(g);
+    rotate_edge(m_, h, r);
+    ++rep_.rotations;
+    for (Index f : {f1, f2}) {
+      region_faces_.push_back(f);
+      for (Index k = 0; k < 4; ++k) cand_.push_back(QuadMesh::halfedge(f, k));
+    }
+    return true;
+  }
+  return false;
+}
+
+void Simplifier::rotate_in_region() {
+  cand_.clear();
+  for (Index f : region_faces_)
+    if (m_.is_face_live(f))
+      for (Index k = 0; k < 4; ++k) cand_.push_back(QuadMesh::halfedge(f, k));
+  int budget = 64;  // each rotation lowers an integer energy, so this is only a guard
+  for (std::size_t i = 0; i < cand_.size() && budget > 0; ++i)
+    if (try_rotate(cand_[i])) --budget;
+}
+
+bool Simplifier::moved_faces_ok(Index v, const Vec3& p) const {
+  bool ok = true;
+  m_.for_each_outgoing(v, [&](Index h) {
+    if (!ok) return;
+    const Index f = QuadMesh::face(h);
+    Vec3 q[4];
+    for (Index i = 0; i < 4; ++i) q[i] = m_.vertex(f, i) == v ? p : m_.position(m_.vertex(f, i));
+    const Vec3 before = m_.face_area_normal(f);
+    if (!quad_keeps_orientation(q[0], q[1], q[2], q[3], before)) ok = false;
+    // Never make a convex quad non-convex.
+    else if (!quad_is_convex(q[0], q[1], q[2], q[3])) {
+      const auto c = m_.face_vertices(f);
+      if (quad_is_convex(m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3]))) ok = false;
+    }
+  });
+  return ok;
+}
+
+// Spring relaxation of one vertex [paper 3.2]: rest length mu to edge neighbours and
+// sqrt(2) mu to diagonal ones; the equilibrium of sum (|p-q|-L)^2 is found by a few
+// fixed-point steps, its normal component dropped, and the result re-projected.
+void Simplifier::smooth_vertex(Index v) {
+  const Vec3 p = m_.position(v);
+  const bool border = m_.is_border_vertex(v);
+  Vec3 target = p;
+  if (border) {
+    // Along the border only: springs to the two border neighbours.
+    const Index h_out = m_.out(v);
+    Index h_in = h_out;
+    m_.for_each_outgoing(v, [&](Index h) { h_in = QuadMesh::prev(h); });
+    const Vec3 a = m_.position(m_.to(h_out)), b = m_.position(m_.from(h_in));
+    const Vec3 ta = (p - a).normalized(), tb = (b - p).normalized();
+    if (m_.valence(v) <= 2 || ta.dot(tb) < std::cos(M_PI / 4)) return;  // corners stay
+    Vec3 x = p;
+    for (int it = 0; it < 3; ++it) {
+      Vec3 sum = Vec3::Zero();
+      for (const Vec3& q : {a, b}) {
+        const Vec3 d = x - q;
+        const double l = d.norm();
+        sum += l > 1e-30 ? Vec3(q + mu_ * d / l) : x;
+      }
+      x = 0.5 * sum;
+    }
+    const Vec3 t = (b - a).normalized();
+    target = p + (x - p).dot(t) * t;
+    const SurfacePoint s = ref_.closest(target, 2 * mu_);
+    if (!s.found()) return;
+    target = s.point;
+  } else {
+    Vec3 x = p;
+    const double ld = kSqrt2 * mu_;
+    for (int it = 0; it < 3; ++it) {
+      Vec3 sum = Vec3::Zero();
+      double w = 0;
+      m_.for_each_outgoing(v, [&](Index h) {
+        // Per face: two edge springs (each edge is shared by two faces) and one diagonal.
+        const Vec3 e1 = m_.position(m_.to(h));
+        const Vec3 dg = m_.position(m_.to(QuadMesh::next(h)));
+        const Vec3 e2 = m_.position(m_.from(QuadMesh::prev(h)));
+        auto spring = [&](const Vec3& q, double rest, double weight) {
+          const Vec3 d = x - q;
+          const double l = d.norm();
+          sum += weight * (l > 1e-30 ? Vec3(q + rest * d / l) : x);
+          w += weight;
+        };
+        spring(e1, mu_, 0.5);
+        spring(e2, mu_, 0.5);
+        spring(dg, ld, 1.0);
+      });
+      x = sum / w;
+    }
+    const Vec3 n = vertex_normal(v).normalized();
+    const Vec3 d = x - p;
+    target = p + d - d.dot(n) * n;
+    const SurfacePoint s = ref_.project(target, n, 2 * mu_);
+    if (!s.found()) return;
+    target = s.point;
+  }
+  if (moved_faces_ok(v, target)) m_.position(v) = target;
+}
+
+void Simplifier::smooth_region() {
+  // The vertices of the touched faces and one ring around them, in id order.
+  ++stamp_;
+  region_verts_.clear();
+  auto add_vertex = [&](Index v) {
+    if (vertex_mark_[v] != stamp_) {
+      vertex_mark_[v] = stamp_;
+      region_verts_.push_back(v);
+    }
+  };
+  for (Index f : region_faces_)
+    if (m_.is_face_live(f))
+      for (Index k = 0; k < 4; ++k) add_vertex(m_.vertex(f, k));
+  std::sort(region_verts_.begin(), region_verts_.end());
+  for (int sweep = 0; sweep < opt_.smoothing_sweeps; ++sweep)
+    for (Index v : region_verts_) smooth_vertex(v);
+}
+
+void Simplifier::requeue_region() {
+  ++stamp_;
+  for (Index v : region_verts_) {
+    if (!m_.is_vertex_live(v)) continue;
+    m_.for_each_outgoing(v, [&](Index h) {
+      const Index f = QuadMesh::face(h);
+      if (face_mark_[f] == stamp_) return;
+      face_mark_[f] = stamp_;
+      push_face(f);
+    });
+  }
+}
+
+void Simplifier::cycle(Index f, Index k, const Vec3& pos) {
+  const Index b = m_.vertex(f, k + 1), d = m_.vertex(f, k + 3);
+  const Index v = collapse_diagonal(m_, f, k, pos);
+  ++rep_.collapses;
+  region_faces_.clear();
+  work_.assign({v, b, d});
+  CleanCounts cc;
+  clean_from(m_, work_, cc, &region_faces_);
+  rep_.doublets += cc.doublets;
+  rep_.singlets += cc.singlets;
+  for (Index x : {v, b, d}) add_faces_around(x, region_faces_);
+  if (opt_.rotations) rotate_in_region();
+  // Faces that rotations or cleaning touched may have died since; smooth the rest.
+  smooth_region();
+  requeue_region();
+}
+
+SimplifyReport Simplifier::run() {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (opt_.adaptive && (!opt_.fitmaps || opt_.fitmaps->s.size() != ref_.mesh().n_vertices() ||
+                        opt_.fitmaps->m.size() != ref_.mesh().n_vertices()))
+    throw std::invalid_argument("simplify: adaptive mode needs fitmaps computed on the reference surface");
+  const CleanCounts initial = clean_all(m_);
+  rep_.doublets += initial.doublets;
+  rep_.singlets += initial.singlets;
+  rep_.initial_faces = m_.n_faces();
+  version_.assign(m_.face_capacity(), 0);
+  face_mark_.assign(m_.face_capacity(), 0);
+  vertex_mark_.assign(m_.vertex_capacity(), 0);
+  mu_ = mean_edge_length(m_);
+  rebuild_heap();
+
+  const Index target = opt_.target_faces;
+  const Index span = rep_.initial_faces > target ? rep_.initial_faces - target : 1;
+  Index next_mu = 0;
+  while (m_.n_faces() > target && !heap_.empty()) {
+    std::pop_heap(heap_.begin(), heap_.end(), LaterFirst{});
+    const Entry e = heap_.back();
+    heap_.pop_back();
+    if (!m_.is_face_live(e.face) || e.version != version_[e.face]) continue;
+    Vec3 pos;
+    if (!can_collapse_diagonal(m_, e.face, e.k) || !place(e.face, e.k, pos) ||
+        (opt_.adaptive && !m_fitmap_allows(e.face, e.k, pos))) {
+      ++rep_.refused;  // the face comes back only when something around it changes
+      continue;
+    }
+    cycle(e.face, e.k, pos);
+    if (rep_.collapses >= next_mu) {
+      // mu drifts slowly: an exact recount every ~0.5% of the faces is cheaper than
+      // tracking every edge each operation touches, and as accurate.
+      mu_ = mean_edge_length(m_);
+      next_mu = rep_.collapses + std::max<Index>(64, m_.n_faces() / 200);
+    }
+    if (heap_.size() > 16 * std::size_t(m_.n_faces()) + 1024) rebuild_heap();
+    if (opt_.progress && rep_.collapses % 256 == 0) {
+      const float done = target ? float(rep_.initial_faces - m_.n_faces()) / float(span) : 0.f;
+      if (!opt_.progress(std::min(done, 1.f), "simplify")) {
+        rep_.cancelled = true;
+        break;
+      }
+    }
+  }
+  m_.compact();
+  rep_.faces = m_.n_faces();
+  rep_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (opt_.progress && !rep_.cancelled) opt_.progress(1.f, "simplify");
+  return rep_;
+}
+
+}  // namespace
+
+double mean_edge_length(const QuadMesh& m) {
+  double sum = 0;
+  std::size_t n = 0;
+  for (Index h = 0; h < m.halfedge_capacity(); ++h) {
+    if (!m.is_face_live(QuadMesh::face(h))) continue;
+    const Index t = m.twin(h);
+    if (t != kNone && t < h) continue;  // each edge once
+    sum += (m.position(m.from(h)) - m.position(m.to(h))).norm();
+    ++n;
+  }
+  return n ? sum / double(n) : 0.0;
+}
+
+SimplifyReport simplify(QuadMesh& mesh, const ReferenceSurface& ref, const SimplifyOptions& options) {
+  return Simplifier(mesh, ref, options).run();
+}
+
+}  // namespace qs

@@ -1,0 +1,57 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <vector>
+
+#include "quadsimp/mesh/quad_mesh.h"
+#include "quadsimp/reference/reference_surface.h"
+#include "quadsimp/util/progress.h"
+
+namespace qs {
+
+//! Per-vertex fitmaps on the reference surface (see fitmap/fitmap.h).
+struct Fitmaps {
+  std::vector<float> s;  //!< F_S: growth of the plane-fit error with radius
+  std::vector<float> m;  //!< F_M: largest radius a face may have around a point
+};
+
+struct SimplifyOptions {
+  //! Stop when the mesh has at most this many faces (0: no count limit).
+  Index target_faces = 0;
+  //! Adaptive mode: collapse priority |d| * F_S, collapses limited by F_M; needs fitmaps.
+  bool adaptive = false;
+  const Fitmaps* fitmaps = nullptr;
+  //! In adaptive mode, a face radius must stay at most F_M / m_factor.
+  double m_factor = 1.0;
+  //! Gauss-Seidel sweeps of the spring relaxation after each collapse.
+  int smoothing_sweeps = 3;
+  //! Edge rotations after each collapse (the paper's step 2).
+  bool rotations = true;
+  //! Called with the fraction done; returning false stops early with a valid mesh.
+  ProgressFn progress;
+};
+
+struct SimplifyReport {
+  Index initial_faces = 0;
+  Index faces = 0;
+  Index collapses = 0;
+  Index rotations = 0;
+  Index doublets = 0;
+  Index singlets = 0;
+  Index refused = 0;     //!< popped candidates refused by a predicate
+  bool cancelled = false;
+  double seconds = 0;
+};
+
+//! Simplifies `mesh` in place by the loop of [Bozzo et al. 2010, 3.2]: one diagonal
+//! collapse per cycle (shortest diagonal first, or |d| * F_S in adaptive mode), then
+//! profitable edge rotations and doublet/singlet cleaning around it, then spring
+//! smoothing of the affected zone with every moved vertex re-projected onto `ref`.
+//! The mesh is compacted at the end. Deterministic for a given input.
+//! \pre mesh is valid and lies on (or near) ref.
+SimplifyReport simplify(QuadMesh& mesh, const ReferenceSurface& ref, const SimplifyOptions& options = {});
+
+//! Mean edge length of a quad mesh (each edge once).
+double mean_edge_length(const QuadMesh& mesh);
+
+}  // namespace qs
