@@ -43,17 +43,21 @@ class Simplifier {
  private:
   float key(Index f, Index k) const;
   void push_face(Index f);
-  bool place(Index f, Index k, Vec3& pos) const;
+  bool place(Index f, Index k, Vec3& pos, Vec3& foot) const;
   bool m_fitmap_allows(Index f, Index k, const Vec3& pos) const;
-  void cycle(Index f, Index k, const Vec3& pos);
+  void cycle(Index f, Index k, const Vec3& pos, const Vec3& foot);
   void add_faces_around(Index v, std::vector<Index>& faces);
   void rotate_in_region();
   bool try_rotate(Index h);
+  bool rotation_follows_reference(Index h, Rotation r) const;
   void smooth_region();
   void smooth_vertex(Index v);
   Vec3 vertex_normal(Index v) const;
   bool moved_faces_ok(Index v, const Vec3& p) const;
-  int target_valence(Index v) const { return m_.is_border_vertex(v) ? 3 : 4; }
+  bool shape_ok(Index f, const Vec3* q, const Vec3& extra_normal) const;
+  Vec3 reference_direction(Index f, const Vec3& extra_normal = Vec3::Zero()) const;
+  int target_valence_of_border(Index v) const;
+  int target_valence(Index v) const { return m_.is_border_vertex(v) ? target_valence_of_border(v) : 4; }
   void requeue_region();
   void rebuild_heap();
   double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n) const;
@@ -64,6 +68,9 @@ class Simplifier {
   SimplifyReport rep_;
   double mu_ = 0;
   std::vector<std::uint32_t> version_, face_mark_, vertex_mark_;
+  // Reference normal under each vertex (at its last projection): faces are checked
+  // against these, so that no sequence of small turns can flip a face.
+  std::vector<Vec3> foot_normal_;
   std::uint32_t stamp_ = 0;
   std::vector<Entry> heap_;
   std::vector<Index> region_faces_, region_verts_, work_, cand_;
@@ -109,20 +116,60 @@ Vec3 Simplifier::vertex_normal(Index v) const {
   return n;
 }
 
+Vec3 Simplifier::reference_direction(Index f, const Vec3& extra_normal) const {
+  Vec3 n = extra_normal;
+  for (Index k = 0; k < 4; ++k) n += foot_normal_[m_.vertex(f, k)];
+  return n;
+}
+
+// A face with new corner positions q stays oriented like the reference surface under
+// it and like itself before, and a convex face stays convex.
+bool Simplifier::shape_ok(Index f, const Vec3* q, const Vec3& extra_normal) const {
+  if (!quad_keeps_orientation(q[0], q[1], q[2], q[3], m_.face_area_normal(f))) return false;
+  const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]).normalized();
+  if (n.dot(reference_direction(f, extra_normal).normalized()) < 0.2) return false;
+  if (quad_is_convex(q[0], q[1], q[2], q[3])) return true;
+  const auto c = m_.face_vertices(f);
+  return !quad_is_convex(m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3]));
+}
+
+// Border vertices aim at valence 3, sharp border corners (turning by more than
+// 60 degrees) at 2.
+int Simplifier::target_valence_of_border(Index v) const {
+  Index h_in = m_.out(v);
+  m_.for_each_outgoing(v, [&](Index h) { h_in = QuadMesh::prev(h); });
+  const Vec3 p = m_.position(v);
+  const Vec3 a = (p - m_.position(m_.to(m_.out(v)))).normalized(), b = (m_.position(m_.from(h_in)) - p).normalized();
+  return a.dot(b) < 0.5 ? 2 : 3;
+}
+
 // Where the merged vertex goes: the midpoint re-projected onto M0 along the normal
 // of the current mesh there (the faces around both ends), or the border end.
-bool Simplifier::place(Index f, Index k, Vec3& pos) const {
+bool Simplifier::place(Index f, Index k, Vec3& pos, Vec3& foot) const {
   const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
   pos = collapse_position(m_, f, k);
+  foot = m_.is_border_vertex(a) ? foot_normal_[a] : foot_normal_[c];
   if (!m_.is_border_vertex(a) && !m_.is_border_vertex(c)) {
     const Vec3 n = vertex_normal(a) + vertex_normal(c);
     const SurfacePoint s = ref_.project(pos, n, 2 * norm_of_diagonal(m_, f, k));
-    if (s.found() && !collapse_folds(m_, f, k, s.point)) {
-      pos = s.point;
-      return true;
-    }
+    if (!s.found()) return false;
+    pos = s.point;
+    foot = ref_.normal_at(s);
   }
-  return !collapse_folds(m_, f, k, pos);
+  bool ok = true;
+  for (Index x : {a, c}) {
+    m_.for_each_outgoing(x, [&](Index h) {
+      const Index g = QuadMesh::face(h);
+      if (g == f || !ok) return;
+      Vec3 q[4];
+      for (Index i = 0; i < 4; ++i) {
+        const Index v = m_.vertex(g, i);
+        q[i] = (v == a || v == c) ? pos : m_.position(v);
+      }
+      ok = shape_ok(g, q, foot);
+    });
+  }
+  return ok;
 }
 
 // [paper 3.3] No face the collapse enlarges may have a radius (largest centre-to-
@@ -155,6 +202,16 @@ void Simplifier::add_faces_around(Index v, std::vector<Index>& faces) {
   m_.for_each_outgoing(v, [&](Index h) { faces.push_back(QuadMesh::face(h)); });
 }
 
+bool Simplifier::rotation_follows_reference(Index h, Rotation r) const {
+  for (const auto& q : rotated_faces(m_, h, r)) {
+    const Vec3 n = quad_normal(m_.position(q[0]), m_.position(q[1]), m_.position(q[2]), m_.position(q[3]));
+    Vec3 ref = Vec3::Zero();
+    for (Index v : q) ref += foot_normal_[v];
+    if (n.normalized().dot(ref.normalized()) < 0.2) return false;
+  }
+  return true;
+}
+
 bool Simplifier::try_rotate(Index h) {
   if (!m_.is_face_live(QuadMesh::face(h)) || m_.twin(h) == kNone) return false;
   const Index g = m_.twin(h);
@@ -176,7 +233,7 @@ bool Simplifier::try_rotate(Index h) {
   const int e_second = second == Rotation::Ccw ? e_a : e_b;
   for (Rotation r : {first, second}) {
     if (r == second && e_second >= keep) break;
-    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r)) continue;
+    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r) || !rotation_follows_reference(h, r)) continue;
     const Index f1 = QuadMesh::face(h), f2 = QuadMesh::face(g);
     rotate_edge(m_, h, r);
     ++rep_.rotations;
@@ -206,13 +263,7 @@ bool Simplifier::moved_faces_ok(Index v, const Vec3& p) const {
     const Index f = QuadMesh::face(h);
     Vec3 q[4];
     for (Index i = 0; i < 4; ++i) q[i] = m_.vertex(f, i) == v ? p : m_.position(m_.vertex(f, i));
-    const Vec3 before = m_.face_area_normal(f);
-    if (!quad_keeps_orientation(q[0], q[1], q[2], q[3], before)) ok = false;
-    // Never make a convex quad non-convex.
-    else if (!quad_is_convex(q[0], q[1], q[2], q[3])) {
-      const auto c = m_.face_vertices(f);
-      if (quad_is_convex(m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3]))) ok = false;
-    }
+    ok = shape_ok(f, q, Vec3::Zero());
   });
   return ok;
 }
@@ -223,7 +274,7 @@ bool Simplifier::moved_faces_ok(Index v, const Vec3& p) const {
 void Simplifier::smooth_vertex(Index v) {
   const Vec3 p = m_.position(v);
   const bool border = m_.is_border_vertex(v);
-  Vec3 target = p;
+  Vec3 target = p, foot;
   if (border) {
     // Along the border only: springs to the two border neighbours.
     const Index h_out = m_.out(v);
@@ -247,6 +298,7 @@ void Simplifier::smooth_vertex(Index v) {
     const SurfacePoint s = ref_.closest(target, 2 * mu_);
     if (!s.found()) return;
     target = s.point;
+    foot = ref_.normal_at(s);
   } else {
     Vec3 x = p;
     const double ld = kSqrt2 * mu_;
@@ -276,8 +328,12 @@ void Simplifier::smooth_vertex(Index v) {
     const SurfacePoint s = ref_.project(target, n, 2 * mu_);
     if (!s.found()) return;
     target = s.point;
+    foot = ref_.normal_at(s);
   }
-  if (moved_faces_ok(v, target)) m_.position(v) = target;
+  if (moved_faces_ok(v, target)) {
+    m_.position(v) = target;
+    foot_normal_[v] = foot;
+  }
 }
 
 void Simplifier::smooth_region() {
@@ -311,9 +367,10 @@ void Simplifier::requeue_region() {
   }
 }
 
-void Simplifier::cycle(Index f, Index k, const Vec3& pos) {
+void Simplifier::cycle(Index f, Index k, const Vec3& pos, const Vec3& foot) {
   const Index b = m_.vertex(f, k + 1), d = m_.vertex(f, k + 3);
   const Index v = collapse_diagonal(m_, f, k, pos);
+  foot_normal_[v] = foot;
   ++rep_.collapses;
   region_faces_.clear();
   work_.assign({v, b, d});
@@ -341,6 +398,12 @@ SimplifyReport Simplifier::run() {
   face_mark_.assign(m_.face_capacity(), 0);
   vertex_mark_.assign(m_.vertex_capacity(), 0);
   mu_ = mean_edge_length(m_);
+  foot_normal_.assign(m_.vertex_capacity(), Vec3::Zero());
+  for (Index v = 0; v < m_.vertex_capacity(); ++v)
+    if (m_.is_vertex_live(v)) {
+      const SurfacePoint s = ref_.closest(m_.position(v));
+      if (s.found()) foot_normal_[v] = ref_.normal_at(s);
+    }
   rebuild_heap();
 
   const Index target = opt_.target_faces;
@@ -351,13 +414,13 @@ SimplifyReport Simplifier::run() {
     const Entry e = heap_.back();
     heap_.pop_back();
     if (!m_.is_face_live(e.face) || e.version != version_[e.face]) continue;
-    Vec3 pos;
-    if (!can_collapse_diagonal(m_, e.face, e.k) || !place(e.face, e.k, pos) ||
+    Vec3 pos, foot;
+    if (!can_collapse_diagonal(m_, e.face, e.k) || !place(e.face, e.k, pos, foot) ||
         (opt_.adaptive && !m_fitmap_allows(e.face, e.k, pos))) {
       ++rep_.refused;  // the face comes back only when something around it changes
       continue;
     }
-    cycle(e.face, e.k, pos);
+    cycle(e.face, e.k, pos, foot);
     if (rep_.collapses >= next_mu) {
       // mu drifts slowly: an exact recount every ~0.5% of the faces is cheaper than
       // tracking every edge each operation touches, and as accurate.

@@ -1,0 +1,214 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/simplify/simplify.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <set>
+
+#include "fixtures/shapes.h"
+#include "quadsimp/convert/tri_to_quad.h"
+#include "quadsimp/io/load_input.h"
+#include "quadsimp/metrics/metrics.h"
+
+using namespace qs;
+using namespace qs::fixtures;
+
+namespace {
+
+struct Case {
+  TriMesh tri;
+  QuadMesh quads;
+};
+
+Case prepare(TriMesh t) {
+  clean(t);
+  QuadMesh q = tri_to_quad(t);
+  return {std::move(t), std::move(q)};
+}
+
+Index count_components(const QuadMesh& m) {
+  std::vector<Index> comp(m.face_capacity(), kNone);
+  Index n = 0;
+  std::vector<Index> stack;
+  for (Index f = 0; f < m.face_capacity(); ++f) {
+    if (!m.is_face_live(f) || comp[f] != kNone) continue;
+    comp[f] = n;
+    stack = {f};
+    while (!stack.empty()) {
+      const Index g = stack.back();
+      stack.pop_back();
+      for (Index k = 0; k < 4; ++k) {
+        const Index t = m.twin(QuadMesh::halfedge(g, k));
+        if (t != kNone && comp[QuadMesh::face(t)] == kNone) {
+          comp[QuadMesh::face(t)] = n;
+          stack.push_back(QuadMesh::face(t));
+        }
+      }
+    }
+    ++n;
+  }
+  return n;
+}
+
+// Simplify to `target` and check what every result must satisfy.
+SimplifyReport run_and_check(Case& c, Index target, const ReferenceSurface& ref) {
+  SimplifyOptions opt;
+  opt.target_faces = target;
+  const SimplifyReport r = simplify(c.quads, ref, opt);
+  validate(c.quads);
+  EXPECT_LE(c.quads.n_faces(), target);
+  EXPECT_GE(c.quads.n_faces(), target - target / 50 - 2);  // cleaning may remove a few more
+  EXPECT_EQ(r.faces, c.quads.n_faces());
+  const QuadQuality q = quad_quality(c.quads, &ref);
+  EXPECT_EQ(q.flipped_faces, 0u);
+  EXPECT_EQ(q.nonconvex_faces, 0u);
+  EXPECT_GT(q.regular_percent, 70.0);
+  // Every vertex lies on the reference surface.
+  double worst = 0;
+  for (Index v = 0; v < c.quads.n_vertices(); ++v)
+    worst = std::max(worst, ref.closest(c.quads.position(v)).distance);
+  EXPECT_LT(worst, 1e-5 * ref.bbox_diagonal());
+  return r;
+}
+
+}  // namespace
+
+TEST(Simplify, sphere_reaches_target) {
+  Case c = prepare(tri_sphere(40, 60));
+  const ReferenceSurface ref(c.tri);
+  run_and_check(c, 400, ref);
+  EXPECT_EQ(count_components(c.quads), 1u);
+}
+
+TEST(Simplify, torus_reaches_target) {
+  Case c = prepare(tri_torus(80, 40));
+  const ReferenceSurface ref(c.tri);
+  run_and_check(c, 500, ref);
+  // Genus is kept: V - E + F = 0.
+  const QuadQuality q = quad_quality(c.quads);
+  EXPECT_EQ(long(q.vertices) - 2 * long(q.faces) + long(q.faces), 0);
+}
+
+TEST(Simplify, open_grid_keeps_its_border) {
+  Case c = prepare(tri_grid(50, 40, 0.3));
+  const ReferenceSurface ref(c.tri);
+  run_and_check(c, 200, ref);
+  // Border vertices stay on the input's border (the unit square's sides).
+  for (Index v = 0; v < c.quads.n_vertices(); ++v) {
+    if (!c.quads.is_border_vertex(v)) continue;
+    const Vec3& p = c.quads.position(v);
+    const double side = std::min({std::abs(p.x()), std::abs(p.x() - 1), std::abs(p.y()), std::abs(p.y() - 1)});
+    EXPECT_LT(side, 1e-6) << "border vertex " << v << " left the border";
+  }
+  EXPECT_EQ(count_components(c.quads), 1u);
+}
+
+TEST(Simplify, two_components_both_survive) {
+  TriMesh t = tri_sphere(30, 40);
+  TriMesh b = tri_sphere(30, 40, 0.7);
+  for (auto& p : b.positions) p.x() += 3;
+  append(t, b);
+  Case c = prepare(std::move(t));
+  const ReferenceSurface ref(c.tri);
+  run_and_check(c, 300, ref);
+  EXPECT_EQ(count_components(c.quads), 2u);
+}
+
+TEST(Simplify, deterministic) {
+  Case a = prepare(tri_sphere(30, 40)), b = prepare(tri_sphere(30, 40));
+  const ReferenceSurface ref(a.tri);
+  SimplifyOptions opt;
+  opt.target_faces = 300;
+  simplify(a.quads, ref, opt);
+  simplify(b.quads, ref, opt);
+  EXPECT_EQ(a.quads.quads(), b.quads.quads());
+  EXPECT_EQ(a.quads.positions(), b.quads.positions());
+}
+
+TEST(Simplify, progress_and_cancel) {
+  Case c = prepare(tri_sphere(40, 60));
+  const ReferenceSurface ref(c.tri);
+  SimplifyOptions opt;
+  opt.target_faces = 100;
+  int calls = 0;
+  opt.progress = [&](float f, std::string_view) {
+    EXPECT_GE(f, 0.f);
+    EXPECT_LE(f, 1.f);
+    return ++calls < 3;
+  };
+  const SimplifyReport r = simplify(c.quads, ref, opt);
+  EXPECT_TRUE(r.cancelled);
+  EXPECT_EQ(calls, 3);
+  EXPECT_GT(c.quads.n_faces(), 100u);
+  validate(c.quads);
+}
+
+TEST(Simplify, bunny_from_glmark2) {
+  const std::string p = "/usr/share/glmark2/models/bunny.obj";
+  if (!std::ifstream(p)) GTEST_SKIP() << p << " not installed (glmark2-data)";
+  Input in = load_input(p);
+  Case c{in.reference, std::move(in.quads)};
+  const ReferenceSurface ref(c.tri);
+  run_and_check(c, 3000, ref);
+}
+
+TEST(ReferenceSurface, projection_lands_on_the_surface) {
+  TriMesh s = tri_sphere(30, 40);
+  clean(s);
+  const ReferenceSurface ref(s);
+  for (int i = 0; i < 50; ++i) {
+    const Vec3 dir = Vec3(std::cos(i * 0.7) * std::sin(i * 0.3 + 0.2), std::sin(i * 0.7) * std::sin(i * 0.3 + 0.2),
+                          std::cos(i * 0.3 + 0.2)).normalized();
+    for (double r : {0.8, 1.0, 1.3}) {
+      const SurfacePoint hit = ref.project(r * dir, dir, 1.0);
+      ASSERT_TRUE(hit.found());
+      EXPECT_LT(ref.closest(hit.point).distance, 1e-5 * ref.bbox_diagonal());
+      EXPECT_NEAR(hit.point.norm(), 1.0, 0.01);  // on the (faceted) unit sphere
+      EXPECT_GT(ref.face_normal(hit.face).dot(dir), 0);
+    }
+  }
+  // Nothing along the line within reach: the closest point is the fallback.
+  const SurfacePoint far = ref.project(Vec3(5, 0, 0), Vec3(0, 0, 1), 0.1);
+  ASSERT_TRUE(far.found());
+  EXPECT_NEAR(far.point.norm(), 1.0, 0.01);
+  // Barycentric lookup reproduces a linear field exactly.
+  std::vector<float> x(s.n_vertices());
+  for (Index v = 0; v < s.n_vertices(); ++v) x[v] = float(s.positions[v].x());
+  const SurfacePoint hit = ref.project(Vec3(0.3, 0.2, 2), Vec3(0, 0, 1), 3);
+  EXPECT_NEAR(ref.interpolate(x, hit), hit.point.x(), 1e-5);
+}
+
+TEST(Metrics, regular_grid_and_cube) {
+  const QuadQuality g = quad_quality(quad_grid(6, 5));
+  EXPECT_DOUBLE_EQ(g.regular_percent, 100.0 * (42 - 4) / 42);  // only the 4 corners are irregular
+  EXPECT_EQ(g.max_valence, 4);
+  EXPECT_DOUBLE_EQ(g.homeometry_min, 1.0);
+  EXPECT_DOUBLE_EQ(g.homeometry_max, 1.0);
+  EXPECT_EQ(g.nonconvex_faces, 0u);
+  const QuadQuality c = quad_quality(cube());
+  EXPECT_EQ(c.faces, 6u);
+  EXPECT_EQ(c.max_valence, 3);
+  EXPECT_DOUBLE_EQ(c.regular_percent, 0.0);
+}
+
+TEST(Metrics, offset_sphere_distance_is_the_offset) {
+  TriMesh inner = tri_sphere(60, 80, 1.0);
+  clean(inner);
+  const ReferenceSurface ref(inner);
+  TriMesh outer = tri_sphere(60, 80, 1.05);
+  clean(outer);
+  const QuadMesh q = tri_to_quad(outer);
+  const SurfaceDistance d = surface_distance(q, ref, 100000);
+  const double expected = 0.05 / ref.bbox_diagonal();
+  EXPECT_NEAR(d.hausdorff, expected, 0.05 * expected);
+  EXPECT_NEAR(d.rms, expected, 0.05 * expected);
+  EXPECT_NEAR(d.mean_to_ref, expected, 0.05 * expected);
+  EXPECT_DOUBLE_EQ(d.projectability, 1.0);
+  // A planar patch against itself: 0 up to rounding.
+  TriMesh plane = tri_grid(20, 20);
+  clean(plane);
+  const ReferenceSurface plane_ref(plane);
+  const SurfaceDistance zero = surface_distance(tri_to_quad(plane), plane_ref, 100000);
+  EXPECT_LT(zero.hausdorff, 1e-9);
+}
