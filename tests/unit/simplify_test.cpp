@@ -205,10 +205,10 @@ TEST(Metrics, offset_sphere_distance_is_the_offset) {
   EXPECT_NEAR(d.rms, expected, 0.05 * expected);
   EXPECT_NEAR(d.mean_to_ref, expected, 0.05 * expected);
   EXPECT_DOUBLE_EQ(d.projectability, 1.0);
-  // A planar patch against itself: 0 up to rounding.
+  // A planar patch against itself: 0 up to the float32 rounding of the BVH.
   TriMesh plane = tri_grid(20, 20);
   clean(plane);
   const ReferenceSurface plane_ref(plane);
   const SurfaceDistance zero = surface_distance(tri_to_quad(plane), plane_ref, 100000);
-  EXPECT_LT(zero.hausdorff, 1e-9);
+  EXPECT_LT(zero.hausdorff, 1e-6);
 }
