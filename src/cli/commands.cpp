@@ -118,6 +118,16 @@ int run_simplify(const SimplifyArgs& a) {
     write_quad_mesh(a.output, in.quads);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads);
+    if (a.json) {
+      const SurfaceDistance d = surface_distance(in.quads, ref, a.samples);
+      std::string j = to_json(quad_quality(in.quads, &ref), &d);
+      char extra[256];
+      std::snprintf(extra, sizeof extra, ", \"seconds\": %.4f, \"collapses\": %u, \"rotations\": %u, \"input_faces\": %u}",
+                    s, r.collapses, r.rotations, r.initial_faces);
+      j.pop_back();
+      std::printf("%s%s\n", j.c_str(), extra);
+      return kOk;
+    }
     std::printf("%s -> %s: %u faces, regular %.1f%%, max valence %d, %.2f s (%u collapses, %u rotations)\n",
                 a.input.c_str(), a.output.c_str(), q.faces, q.regular_percent, q.max_valence, s, r.collapses,
                 r.rotations);

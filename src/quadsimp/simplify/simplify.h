@@ -25,6 +25,9 @@ struct SimplifyOptions {
   double m_factor = 1.0;
   //! Gauss-Seidel sweeps of the spring relaxation after each collapse.
   int smoothing_sweeps = 3;
+  //! Refuse collapses whose merged vertex would exceed this valence (0: no limit).
+  //! The candidate comes back when its neighbourhood changes, as with any refusal.
+  int max_valence = 6;
   //! Edge rotations after each collapse (the paper's step 2).
   bool rotations = true;
   //! Called with the fraction done; returning false stops early with a valid mesh.
