@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
 #include "quadsimp/metrics/metrics.h"
@@ -103,8 +104,12 @@ int run_simplify(const SimplifyArgs& a) {
     std::cerr << "quadsimp simplify: give --faces N (--auto-halt needs --adaptive)\n";
     return kBadArguments;
   }
-  if (a.adaptive) {
-    std::cerr << "quadsimp simplify: --adaptive is not available yet (fitmaps are not implemented)\n";
+  if (a.adaptive && a.faces == 0 && !a.auto_halt) {
+    std::cerr << "quadsimp simplify: --adaptive needs --faces N or --auto-halt\n";
+    return kBadArguments;
+  }
+  if (a.faces && a.auto_halt) {
+    std::cerr << "quadsimp simplify: give either --faces or --auto-halt, not both\n";
     return kBadArguments;
   }
   try {
@@ -114,6 +119,16 @@ int run_simplify(const SimplifyArgs& a) {
     SimplifyOptions opt;
     opt.target_faces = a.faces;
     opt.progress = progress_bar(a.quiet);
+    Fitmaps fitmaps;
+    if (a.adaptive) {
+      FitmapOptions fo;
+      fo.tau = a.tau;
+      fo.progress = opt.progress;
+      fitmaps = compute_fitmaps(ref.mesh(), fo);
+      opt.adaptive = true;
+      opt.fitmaps = &fitmaps;
+      opt.m_factor = a.m_factor;
+    }
     const SimplifyReport r = simplify(in.quads, ref, opt);
     write_quad_mesh(a.output, in.quads);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -138,6 +153,30 @@ int run_simplify(const SimplifyArgs& a) {
     return kOk;
   } catch (const InvalidInput& e) {
     std::cerr << "quadsimp simplify: " << e.what() << "\n";
+    return kBadInput;
+  }
+}
+
+int run_fitmap(const FitmapArgs& a) {
+  if (auto err = check_output_path(a.input, a.output); !err.empty() || extension_of(a.output) != "ply") {
+    std::cerr << "quadsimp fitmap: " << (err.empty() ? "the output must be a .ply file" : err) << "\n";
+    return kBadArguments;
+  }
+  try {
+    const auto t0 = std::chrono::steady_clock::now();
+    TriMesh tri = triangles_of(read_mesh(a.input));
+    clean(tri, a.input, stderr_log(a.quiet));
+    FitmapOptions fo;
+    fo.tau = a.tau;
+    fo.progress = progress_bar(a.quiet);
+    const Fitmaps f = compute_fitmaps(tri, fo);
+    write_tri_mesh_ply(a.output, tri, {{"fitmap_s", f.s}, {"fitmap_m", f.m}});
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("%s: S and M fitmaps of %u vertices written to %s (per-vertex fitmap_s, fitmap_m; colour = S), %.2f s\n",
+                a.input.c_str(), tri.n_vertices(), a.output.c_str(), s);
+    return kOk;
+  } catch (const InvalidInput& e) {
+    std::cerr << "quadsimp fitmap: " << e.what() << "\n";
     return kBadInput;
   }
 }

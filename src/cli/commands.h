@@ -18,10 +18,17 @@ struct SimplifyArgs {
   std::string input, output;
   unsigned faces = 0;
   bool adaptive = false, auto_halt = false, stats = false, json = false, quiet = false;
-  double tau = 0.05;
+  double tau = 0.05, m_factor = 1.0;
   unsigned samples = 1000000;
 };
 int run_simplify(const SimplifyArgs& args);
+
+struct FitmapArgs {
+  std::string input, output;
+  double tau = 0.05;
+  bool quiet = false;
+};
+int run_fitmap(const FitmapArgs& args);
 
 struct StatsArgs {
   std::string reference, quads;

@@ -25,10 +25,18 @@ int main(int argc, char** argv) {
   s->add_flag("--adaptive", simp.adaptive, "adaptive mode driven by fitmaps");
   s->add_flag("--auto-halt", simp.auto_halt, "adaptive: stop when no feasible collapse remains");
   s->add_option("--tau", simp.tau, "adaptive: M-fitmap tolerance (share of inconsistent area)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  s->add_option("--m-factor", simp.m_factor, "adaptive: a face radius must stay below F_M / this")->capture_default_str()->check(CLI::PositiveNumber);
   s->add_flag("--stats", simp.stats, "print quality and distance metrics of the result");
   s->add_flag("--json", simp.json, "print the result's metrics (and the time) as one JSON object");
   s->add_option("--samples", simp.samples, "distance samples per surface for --stats")->capture_default_str();
   s->add_flag("-q,--quiet", simp.quiet, "no progress bar and no notes");
+
+  FitmapArgs fit;
+  auto* fm = app.add_subcommand("fitmap", "Compute the S and M fitmaps of a mesh and write them as per-vertex PLY properties");
+  fm->add_option("IN", fit.input, "input mesh")->required()->check(CLI::ExistingFile);
+  fm->add_option("OUT", fit.output, "output .ply (fitmap_s, fitmap_m per vertex; S as colour)")->required();
+  fm->add_option("--tau", fit.tau, "M-fitmap tolerance (share of inconsistent area)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  fm->add_flag("-q,--quiet", fit.quiet, "no progress bar and no notes");
 
   StatsArgs stats;
   auto* st = app.add_subcommand("stats", "Quality of a quad mesh and its distance to a reference surface");
@@ -47,6 +55,7 @@ int main(int argc, char** argv) {
     if (*c) return run_convert(convert);
     if (*s) return run_simplify(simp);
     if (*st) return run_stats(stats);
+    if (*fm) return run_fitmap(fit);
   } catch (const std::exception& e) {
     std::cerr << "quadsimp: internal error: " << e.what() << "\n";
     return 3;

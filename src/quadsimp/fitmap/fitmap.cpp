@@ -1,0 +1,406 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/fitmap/fitmap.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "quadsimp/util/errors.h"
+
+namespace qs {
+namespace {
+
+// Exact area-weighted moments of a set of triangles: enough to fit a plane by total
+// least squares and to orient it.
+struct Moments {
+  double area = 0;
+  Vec3 first = Vec3::Zero();   // integral of x
+  double second[6] = {};       // integral of x x^T: xx xy xz yy yz zz
+  Vec3 normal = Vec3::Zero();  // area-weighted normal sum
+  Index count = 0;             // triangles
+  void add(const Moments& o) {
+    area += o.area;
+    first += o.first;
+    for (int k = 0; k < 6; ++k) second[k] += o.second[k];
+    normal += o.normal;
+    count += o.count;
+  }
+};
+
+Moments triangle_moments(const Vec3& a, const Vec3& b, const Vec3& c) {
+  Moments m;
+  const Vec3 n = (b - a).cross(c - a);
+  m.area = 0.5 * n.norm();
+  const Vec3 s = a + b + c;
+  m.first = m.area * s / 3.0;
+  // Integral of x x^T over a triangle: A/12 (a a^T + b b^T + c c^T + s s^T).
+  const double w = m.area / 12.0;
+  auto outer = [&](const Vec3& x) {
+    m.second[0] += w * x.x() * x.x();
+    m.second[1] += w * x.x() * x.y();
+    m.second[2] += w * x.x() * x.z();
+    m.second[3] += w * x.y() * x.y();
+    m.second[4] += w * x.y() * x.z();
+    m.second[5] += w * x.z() * x.z();
+  };
+  outer(a), outer(b), outer(c), outer(s);
+  m.normal = 0.5 * n;
+  m.count = 1;
+  return m;
+}
+
+struct Fit {
+  bool ok = false;
+  double error = 0;  // RMS distance to the plane
+  Vec3 normal = Vec3::Zero();
+};
+
+Fit fit_plane(const Moments& m) {
+  Fit f;
+  if (m.count < 4 || m.area <= 0) return f;
+  const Vec3 c = m.first / m.area;
+  Eigen::Matrix3d C;
+  C << m.second[0], m.second[1], m.second[2], m.second[1], m.second[3], m.second[4], m.second[2], m.second[4],
+      m.second[5];
+  C = C / m.area - c * c.transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(C);
+  const Vec3 ev = es.eigenvalues();
+  // A neighbourhood that is (nearly) a line has no well-defined plane.
+  if (!(ev(1) > 1e-12 * ev(2))) return f;
+  f.ok = true;
+  f.error = std::sqrt(std::max(ev(0), 0.0));
+  f.normal = es.eigenvectors().col(0);
+  if (f.normal.dot(m.normal) < 0) f.normal = -f.normal;
+  return f;
+}
+
+// Vertex -> vertex and vertex -> triangle incidence, as flat CSR arrays.
+struct Incidence {
+  std::vector<Index> vv_start, vv, vt_start, vt;
+  explicit Incidence(const TriMesh& t) {
+    const Index nv = t.n_vertices();
+    vt_start.assign(nv + 1, 0);
+    for (const auto& f : t.faces)
+      for (Index v : f) ++vt_start[v + 1];
+    std::partial_sum(vt_start.begin(), vt_start.end(), vt_start.begin());
+    vt.resize(vt_start.back());
+    std::vector<Index> fill(vt_start.begin(), vt_start.end() - 1);
+    for (Index f = 0; f < t.n_faces(); ++f)
+      for (Index v : t.faces[f]) vt[fill[v]++] = f;
+    std::vector<std::vector<Index>> nb(nv);
+    for (const auto& f : t.faces)
+      for (int k = 0; k < 3; ++k) {
+        nb[f[k]].push_back(f[(k + 1) % 3]);
+        nb[f[k]].push_back(f[(k + 2) % 3]);
+      }
+    vv_start.assign(nv + 1, 0);
+    for (Index v = 0; v < nv; ++v) {
+      std::sort(nb[v].begin(), nb[v].end());
+      nb[v].erase(std::unique(nb[v].begin(), nb[v].end()), nb[v].end());
+      vv_start[v + 1] = vv_start[v] + Index(nb[v].size());
+    }
+    vv.reserve(vv_start.back());
+    for (auto& n : nb) vv.insert(vv.end(), n.begin(), n.end());
+  }
+};
+
+struct Scratch {
+  std::vector<Index> mark, queue, tris;
+  Index stamp = 0;
+};
+
+// Plane-fit error and inconsistent-area fraction of the connected ball (p, r), on the
+// triangles themselves. Returns false when there is no usable fit.
+bool exact_ball(const TriMesh& t, const Incidence& inc, const std::vector<Moments>& tm, Index p, double r,
+                Scratch& s, double& error, double& frac) {
+  if (s.mark.size() != t.n_vertices()) s.mark.assign(t.n_vertices(), 0);
+  const Index stamp = ++s.stamp;
+  const Vec3& c = t.positions[p];
+  const double r2 = r * r;
+  s.queue.clear();
+  s.queue.push_back(p);
+  s.mark[p] = stamp;
+  for (std::size_t i = 0; i < s.queue.size(); ++i) {
+    const Index v = s.queue[i];
+    for (Index j = inc.vv_start[v]; j < inc.vv_start[v + 1]; ++j) {
+      const Index x = inc.vv[j];
+      if (s.mark[x] != stamp && (t.positions[x] - c).squaredNorm() < r2) {
+        s.mark[x] = stamp;
+        s.queue.push_back(x);
+      }
+    }
+  }
+  Moments sum;
+  s.tris.clear();
+  for (Index v : s.queue)
+    for (Index j = inc.vt_start[v]; j < inc.vt_start[v + 1]; ++j) {
+      const Index f = inc.vt[j];
+      const auto& tri = t.faces[f];
+      // Count each triangle once: from its lowest corner, when all corners are inside.
+      if (std::min({tri[0], tri[1], tri[2]}) != v) continue;
+      if (s.mark[tri[0]] != stamp || s.mark[tri[1]] != stamp || s.mark[tri[2]] != stamp) continue;
+      sum.add(tm[f]);
+      s.tris.push_back(f);
+    }
+  const Fit fit = fit_plane(sum);
+  if (!fit.ok) return false;
+  double bad = 0;
+  for (Index f : s.tris)
+    if (tm[f].normal.dot(fit.normal) <= 0) bad += tm[f].area;
+  error = fit.error;
+  frac = bad / sum.area;
+  return true;
+}
+
+// The mesh clustered into cubic cells of one size: each cell keeps the summed moments
+// of the triangles whose centroid falls in it, and the area of those of its triangles
+// that face against the cell's mean normal. Cells touching through a mesh edge are
+// neighbours, so a BFS over cells follows the surface like the exact BFS does.
+struct CellLevel {
+  std::vector<Moments> moments;
+  std::vector<Vec3> centre;
+  std::vector<double> against;  // area facing against the cell's own mean normal
+  std::vector<Index> adj_start, adj;
+  std::vector<Index> cell_of_triangle;
+};
+
+CellLevel build_cells(const TriMesh& t, const std::vector<Moments>& tm,
+                      const std::vector<std::array<Index, 3>>& tri_adj, double size) {
+  CellLevel L;
+  L.cell_of_triangle.resize(t.n_faces());
+  std::unordered_map<std::uint64_t, Index> id;
+  id.reserve(t.n_faces() / 2 + 16);
+  for (Index f = 0; f < t.n_faces(); ++f) {
+    const Vec3 c = tm[f].area > 0 ? Vec3(tm[f].first / tm[f].area)
+                                  : Vec3((t.positions[t.faces[f][0]] + t.positions[t.faces[f][1]] +
+                                          t.positions[t.faces[f][2]]) / 3.0);
+    const auto q = [&](double x) { return std::uint64_t(std::int64_t(std::floor(x / size)) & 0x1fffff); };
+    const std::uint64_t key = (q(c.x()) << 42) | (q(c.y()) << 21) | q(c.z());
+    auto [it, fresh] = id.emplace(key, Index(L.moments.size()));
+    if (fresh) L.moments.emplace_back();
+    L.moments[it->second].add(tm[f]);
+    L.cell_of_triangle[f] = it->second;
+  }
+  const Index nc = Index(L.moments.size());
+  L.centre.resize(nc);
+  L.against.assign(nc, 0.0);
+  for (Index c = 0; c < nc; ++c) L.centre[c] = L.moments[c].first / std::max(L.moments[c].area, 1e-300);
+  for (Index f = 0; f < t.n_faces(); ++f) {
+    const Index c = L.cell_of_triangle[f];
+    if (tm[f].normal.dot(L.moments[c].normal) <= 0) L.against[c] += tm[f].area;
+  }
+  std::vector<std::pair<Index, Index>> pairs;
+  for (Index f = 0; f < t.n_faces(); ++f)
+    for (Index g : tri_adj[f])
+      if (g != kNone && L.cell_of_triangle[f] != L.cell_of_triangle[g])
+        pairs.push_back({L.cell_of_triangle[f], L.cell_of_triangle[g]});
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  L.adj_start.assign(nc + 1, 0);
+  for (auto& pr : pairs) ++L.adj_start[pr.first + 1];
+  std::partial_sum(L.adj_start.begin(), L.adj_start.end(), L.adj_start.begin());
+  L.adj.resize(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) L.adj[i] = pairs[i].second;
+  return L;
+}
+
+bool cell_ball(const CellLevel& L, Index start, const Vec3& p, double r, Scratch& s, double& error, double& frac) {
+  if (s.mark.size() < L.moments.size()) s.mark.assign(L.moments.size(), 0);
+  const Index stamp = ++s.stamp;
+  const double r2 = r * r;
+  s.queue.clear();
+  s.queue.push_back(start);
+  s.mark[start] = stamp;
+  Moments sum;
+  for (std::size_t i = 0; i < s.queue.size(); ++i) {
+    const Index c = s.queue[i];
+    sum.add(L.moments[c]);
+    for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
+      const Index x = L.adj[j];
+      if (s.mark[x] != stamp && (L.centre[x] - p).squaredNorm() < r2) {
+        s.mark[x] = stamp;
+        s.queue.push_back(x);
+      }
+    }
+  }
+  const Fit fit = fit_plane(sum);
+  if (!fit.ok) return false;
+  double bad = 0;
+  for (Index c : s.queue) {
+    const bool cell_against = L.moments[c].normal.dot(fit.normal) <= 0;
+    bad += cell_against ? L.moments[c].area - L.against[c] : L.against[c];
+  }
+  error = fit.error;
+  frac = bad / sum.area;
+  return true;
+}
+
+std::vector<std::array<Index, 3>> triangle_neighbours(const TriMesh& t) {
+  struct Dir {
+    std::uint64_t key;
+    Index corner;
+  };
+  std::vector<Dir> d;
+  d.reserve(3 * t.faces.size());
+  for (Index f = 0; f < t.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k) {
+      const Index a = t.faces[f][k], b = t.faces[f][(k + 1) % 3];
+      d.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), 3 * f + k});
+    }
+  std::sort(d.begin(), d.end(), [](const Dir& x, const Dir& y) { return x.key < y.key || (x.key == y.key && x.corner < y.corner); });
+  std::vector<std::array<Index, 3>> adj(t.faces.size(), {kNone, kNone, kNone});
+  for (std::size_t i = 0; i + 1 < d.size(); ++i)
+    if (d[i].key == d[i + 1].key) {
+      adj[d[i].corner / 3][d[i].corner % 3] = d[i + 1].corner / 3;
+      adj[d[i + 1].corner / 3][d[i + 1].corner % 3] = d[i].corner / 3;
+    }
+  return adj;
+}
+
+// F_S and F_M from the per-radius errors and fractions of one vertex.
+void summarise(const std::vector<double>& radii, const double* error, const double* frac, const char* ok,
+               const FitmapOptions& opt, float& fs, float& fm) {
+  double m = radii.front();
+  std::size_t last = 0;  // radii up to here are used for F_S
+  bool failed = false;
+  for (std::size_t i = 0; i < radii.size(); ++i) {
+    if (!ok[i]) continue;
+    if (!failed) {
+      if (frac[i] < opt.tau) m = radii[i], last = i;
+      else failed = true;
+    }
+  }
+  if (!opt.local_s) last = radii.size() - 1;
+  last = std::max<std::size_t>(last, std::min<std::size_t>(2, radii.size() - 1));
+  double a = 0;
+  if (opt.local_s) {
+    // The median over radii of E_i / r_i^2: each radius votes for a, so one large
+    // neighbourhood reaching a distant feature does not decide for a flat point.
+    double votes[32];
+    int n = 0;
+    for (std::size_t i = 0; i <= last && n < 32; ++i)
+      if (ok[i]) votes[n++] = error[i] / (radii[i] * radii[i]);
+    if (n) {
+      std::nth_element(votes, votes + n / 2, votes + n);
+      a = votes[n / 2];
+    }
+  } else {
+    double num = 0, den = 0;  // the paper's least-squares fit of E(r) = a r^2
+    for (std::size_t i = 0; i <= last; ++i) {
+      if (!ok[i]) continue;
+      const double r2 = radii[i] * radii[i];
+      num += r2 * error[i];
+      den += r2 * r2;
+    }
+    a = den > 0 ? num / den : 0.0;
+  }
+  fs = float(std::sqrt(a));
+  fm = float(m);
+}
+
+void laplacian(const Incidence& inc, std::vector<float>& f, int passes) {
+  std::vector<float> g(f.size());
+  for (int it = 0; it < passes; ++it) {
+    for (Index v = 0; v < f.size(); ++v) {
+      double s = f[v];
+      for (Index j = inc.vv_start[v]; j < inc.vv_start[v + 1]; ++j) s += f[inc.vv[j]];
+      g[v] = float(s / (1 + inc.vv_start[v + 1] - inc.vv_start[v]));
+    }
+    f.swap(g);
+  }
+}
+
+Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
+  if (t.n_faces() == 0) throw InvalidInput("fitmaps: the mesh has no faces");
+  const std::vector<double> radii = fitmap_radii(t, opt.levels);
+  const Index nv = t.n_vertices(), nl = Index(radii.size());
+  const Incidence inc(t);
+  std::vector<Moments> tm(t.n_faces());
+  for (Index f = 0; f < t.n_faces(); ++f)
+    tm[f] = triangle_moments(t.positions[t.faces[f][0]], t.positions[t.faces[f][1]], t.positions[t.faces[f][2]]);
+  std::vector<double> error(std::size_t(nv) * nl, 0), frac(std::size_t(nv) * nl, 0);
+  std::vector<char> ok(std::size_t(nv) * nl, 0);
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  const auto adj = triangle_neighbours(t);
+
+  for (Index i = 0; i < nl; ++i) {
+    const double r = radii[i];
+    if (r <= opt.exact_up_to * radii[0]) {
+      tbb::parallel_for(Index(0), nv, [&](Index v) {
+        if (inc.vt_start[v] == inc.vt_start[v + 1]) return;
+        const std::size_t k = std::size_t(v) * nl + i;
+        ok[k] = exact_ball(t, inc, tm, v, r, scratch.local(), error[k], frac[k]);
+      });
+    } else {
+      const CellLevel L = build_cells(t, tm, adj, r / opt.cells_per_radius);
+      for (auto& s : scratch) s.mark.clear();
+      tbb::parallel_for(Index(0), nv, [&](Index v) {
+        if (inc.vt_start[v] == inc.vt_start[v + 1]) return;
+        const std::size_t k = std::size_t(v) * nl + i;
+        const Index start = L.cell_of_triangle[inc.vt[inc.vt_start[v]]];
+        ok[k] = cell_ball(L, start, t.positions[v], r, scratch.local(), error[k], frac[k]);
+      });
+      for (auto& s : scratch) s.mark.clear();
+    }
+    if (opt.progress && !opt.progress(float(i + 1) / float(nl), "fitmaps")) throw Cancelled();
+  }
+  Fitmaps out;
+  out.s.assign(nv, 0.f);
+  out.m.assign(nv, float(radii.back()));
+  for (Index v = 0; v < nv; ++v) {
+    const std::size_t k = std::size_t(v) * nl;
+    summarise(radii, &error[k], &frac[k], &ok[k], opt, out.s[v], out.m[v]);
+  }
+  if (smooth) {
+    laplacian(inc, out.s, opt.smooth_s);
+    laplacian(inc, out.m, opt.smooth_m);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> fitmap_radii(const TriMesh& t, int levels) {
+  double edges = 0;
+  for (const auto& f : t.faces)
+    for (int k = 0; k < 3; ++k) edges += (t.positions[f[k]] - t.positions[f[(k + 1) % 3]]).norm();
+  const double r0 = edges / (3.0 * std::max<Index>(t.n_faces(), 1));
+  const double rh = std::max(bbox_diagonal(t.positions) / 4.0, r0);
+  std::vector<double> r(levels + 1);
+  for (int i = 0; i <= levels; ++i) r[i] = r0 * std::pow(rh / r0, double(i) / levels);
+  return r;
+}
+
+Fitmaps compute_fitmaps(const TriMesh& mesh, const FitmapOptions& options) { return compute(mesh, options, true); }
+
+Fitmaps compute_fitmaps_unsmoothed(const TriMesh& mesh, const FitmapOptions& options) {
+  return compute(mesh, options, false);
+}
+
+Fitmaps fitmaps_brute_force(const TriMesh& t, const std::vector<Index>& vertices, const FitmapOptions& opt) {
+  const std::vector<double> radii = fitmap_radii(t, opt.levels);
+  const Incidence inc(t);
+  std::vector<Moments> tm(t.n_faces());
+  for (Index f = 0; f < t.n_faces(); ++f)
+    tm[f] = triangle_moments(t.positions[t.faces[f][0]], t.positions[t.faces[f][1]], t.positions[t.faces[f][2]]);
+  Fitmaps out;
+  out.s.assign(vertices.size(), 0.f);
+  out.m.assign(vertices.size(), 0.f);
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  tbb::parallel_for(std::size_t(0), vertices.size(), [&](std::size_t j) {
+    std::vector<double> e(radii.size()), fr(radii.size());
+    std::vector<char> ok(radii.size());
+    for (std::size_t i = 0; i < radii.size(); ++i)
+      ok[i] = exact_ball(t, inc, tm, vertices[j], radii[i], scratch.local(), e[i], fr[i]);
+    summarise(radii, e.data(), fr.data(), ok.data(), opt, out.s[j], out.m[j]);
+  });
+  return out;
+}
+
+}  // namespace qs

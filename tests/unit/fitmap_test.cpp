@@ -1,0 +1,196 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/fitmap/fitmap.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "fixtures/shapes.h"
+#include "quadsimp/convert/tri_to_quad.h"
+#include "quadsimp/io/load_input.h"
+
+using namespace qs;
+using namespace qs::fixtures;
+
+namespace {
+
+// A square grid over [-h, h]^2 lifted by z(x, y).
+template <class Height>
+TriMesh height_field(int n, double h, Height z) {
+  TriMesh t = tri_grid(n, n);
+  for (Vec3& p : t.positions) {
+    p.x() = (2 * p.x() - 1) * h;
+    p.y() = (2 * p.y() - 1) * h;
+    p.z() = z(p.x(), p.y());
+  }
+  clean(t);
+  return t;
+}
+
+Index centre_vertex(const TriMesh& t) {
+  Index best = 0;
+  for (Index v = 0; v < t.n_vertices(); ++v)
+    if (t.positions[v].head<2>().norm() < t.positions[best].head<2>().norm()) best = v;
+  return best;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+TEST(Fitmaps, radii_are_exponential_from_mean_edge_to_quarter_diagonal) {
+  const TriMesh t = height_field(20, 1.0, [](double, double) { return 0.0; });
+  const auto r = fitmap_radii(t, 8);
+  ASSERT_EQ(r.size(), 9u);
+  EXPECT_NEAR(r.back(), bbox_diagonal(t.positions) / 4, 1e-12);
+  for (std::size_t i = 1; i + 1 < r.size(); ++i) EXPECT_NEAR(r[i] / r[i - 1], r[i + 1] / r[i], 1e-9);
+}
+
+TEST(Fitmaps, plane_has_zero_s_and_the_largest_m) {
+  const TriMesh t = height_field(40, 1.0, [](double, double) { return 0.0; });
+  const Fitmaps f = compute_fitmaps(t);
+  const double rh = fitmap_radii(t, 8).back();
+  // F_S = sqrt(a) with a ~ E / r^2 turns double round-off in E (~1e-9) into ~1e-4;
+  // a unit sphere gives 0.54 at this scale.
+  for (Index v = 0; v < t.n_vertices(); ++v) {
+    EXPECT_LT(f.s[v], 1e-3);
+    EXPECT_NEAR(f.m[v], rh, 1e-6 * rh);
+  }
+}
+
+TEST(Fitmaps, sphere_cap_s_matches_the_analytic_growth) {
+  // On a sphere of radius R a disc of radius r deviates from its plane by
+  // rho^2 / 2R; its RMS is r^2 / (4 sqrt(3) R), so F_S = sqrt(1 / (4 sqrt(3) R)).
+  for (double R : {1.0, 2.0}) {
+    const TriMesh t = height_field(80, 0.4 * R, [R](double x, double y) { return std::sqrt(R * R - x * x - y * y); });
+    const Fitmaps f = compute_fitmaps_unsmoothed(t);
+    const double expected = std::sqrt(1.0 / (4 * std::sqrt(3.0) * R));
+    EXPECT_NEAR(f.s[centre_vertex(t)], expected, 0.1 * expected) << "R = " << R;
+  }
+}
+
+TEST(Fitmaps, cylinder_s_is_lower_than_the_sphere) {
+  // Bent in one direction only: RMS r^2 / (8R), F_S = sqrt(1 / (8R)).
+  const TriMesh t = height_field(80, 0.4, [](double x, double) { return std::sqrt(1.0 - x * x); });
+  const Fitmaps f = compute_fitmaps_unsmoothed(t);
+  const double expected = std::sqrt(1.0 / 8.0);
+  EXPECT_NEAR(f.s[centre_vertex(t)], expected, 0.1 * expected);
+}
+
+TEST(Fitmaps, sphere_m_stops_where_the_cap_passes_tau) {
+  // A unit sphere and, far away, a small triangle that enlarges the bounding box so
+  // that the largest radius exceeds the sphere. Triangles past 90 degrees from p face
+  // against the plane; they reach 5% of the cap at a chord of 1.4507 R.
+  TriMesh t = tri_sphere(60, 90);
+  TriMesh far;
+  far.positions = {{20, 0, 0}, {20.1, 0, 0}, {20, 0.1, 0}};
+  far.faces = {{0, 1, 2}};
+  append(t, far);
+  clean(t);
+  const Fitmaps f = compute_fitmaps_unsmoothed(t);
+  const auto r = fitmap_radii(t, 8);
+  const double chord = 1.4507;
+  double expected = r[0];
+  for (double ri : r)
+    if (ri < chord) expected = ri;
+  std::vector<double> m;
+  for (Index v = 0; v + 3 < t.n_vertices(); ++v) m.push_back(f.m[v]);
+  EXPECT_NEAR(median(m), expected, 1e-6 * expected);  // F_M is stored as float
+}
+
+TEST(Fitmaps, fast_method_matches_brute_force) {
+  // Within 5% (median relative difference) at a sample of vertices, on the bunny if
+  // available, otherwise on a bumpy sphere.
+  TriMesh t;
+  const std::string bunny = "/usr/share/glmark2/models/bunny.obj";
+  if (std::ifstream(bunny)) {
+    t = load_input(bunny).reference;
+  } else {
+    t = tri_sphere(80, 120);
+    for (Vec3& p : t.positions) p *= 1 + 0.05 * std::sin(7 * p.x()) * std::cos(5 * p.y());
+  }
+  const Fitmaps fast = compute_fitmaps_unsmoothed(t);
+  std::vector<Index> sample;
+  for (Index v = 0; v < t.n_vertices(); v += 97) sample.push_back(v);
+  const Fitmaps ref = fitmaps_brute_force(t, sample);
+  std::vector<double> ds, dm;
+  for (std::size_t j = 0; j < sample.size(); ++j) {
+    if (ref.s[j] > 0) ds.push_back(std::abs(fast.s[sample[j]] - ref.s[j]) / ref.s[j]);
+    dm.push_back(std::abs(fast.m[sample[j]] - ref.m[j]) / ref.m[j]);
+  }
+  EXPECT_LT(median(ds), 0.05);
+  EXPECT_LT(median(dm), 0.05);
+}
+
+TEST(Adaptive, m_fitmap_refuses_collapses_that_grow_faces_past_it) {
+  TriMesh t = tri_grid(30, 30, 0.2);
+  clean(t);
+  const ReferenceSurface ref(t);
+  QuadMesh q = tri_to_quad(t);
+  const Index before = q.n_faces();
+  Fitmaps f = compute_fitmaps(t);
+  // F_M below the radius of every face now: no collapse may go through.
+  const double tiny = 0.1 * ref.mean_edge_length();
+  std::fill(f.m.begin(), f.m.end(), float(tiny));
+  SimplifyOptions opt;
+  opt.adaptive = true;
+  opt.fitmaps = &f;
+  const SimplifyReport r = simplify(q, ref, opt);
+  EXPECT_EQ(r.collapses, 0u);
+  EXPECT_GT(r.refused, 0u);
+  EXPECT_EQ(q.n_faces(), before);
+  validate(q);
+}
+
+TEST(Adaptive, auto_halt_terminates) {
+  TriMesh t = tri_sphere(30, 40);
+  TriMesh far;  // enlarges the bounding box so that F_M can stop the sphere
+  far.positions = {{20, 0, 0}, {20.1, 0, 0}, {20, 0.1, 0}};
+  far.faces = {{0, 1, 2}};
+  append(t, far);
+  clean(t);
+  const ReferenceSurface ref(t);
+  QuadMesh q = tri_to_quad(t);
+  const Fitmaps f = compute_fitmaps(t);
+  SimplifyOptions opt;
+  opt.adaptive = true;
+  opt.fitmaps = &f;
+  const SimplifyReport r = simplify(q, ref, opt);  // no target: until nothing is feasible
+  validate(q);
+  EXPECT_GT(r.collapses, 0u);
+  EXPECT_FALSE(r.cancelled);
+  EXPECT_LT(q.n_faces(), r.initial_faces);
+  EXPECT_GE(q.n_faces(), 6u + 1u);  // the sphere keeps a closed mesh, the far triangle its quad
+}
+
+TEST(Adaptive, faces_are_smaller_around_a_bump) {
+  // A flat square with one narrow bump in its middle: F_S is ~0 on the flat part, so
+  // it is coarsened first.
+  TriMesh t = height_field(80, 1.0, [](double x, double y) { return 0.15 * std::exp(-(x * x + y * y) / 0.02); });
+  const ReferenceSurface ref(t);
+  QuadMesh q = tri_to_quad(t);
+  const Fitmaps f = compute_fitmaps(t);
+  SimplifyOptions opt;
+  opt.adaptive = true;
+  opt.fitmaps = &f;
+  opt.target_faces = 400;
+  simplify(q, ref, opt);
+  validate(q);
+  double near = 0, far = 0;
+  int n_near = 0, n_far = 0;
+  for (Index fc = 0; fc < q.n_faces(); ++fc) {
+    const Vec3 c = q.face_centroid(fc);
+    const double size = std::sqrt(0.5 * q.face_area_normal(fc).norm());
+    const double d = c.head<2>().norm();
+    if (d < 0.2) near += size, ++n_near;
+    else if (d > 0.6) far += size, ++n_far;
+  }
+  ASSERT_GT(n_near, 0);
+  ASSERT_GT(n_far, 0);
+  EXPECT_LT(near / n_near, 0.8 * far / n_far) << "faces on the bump should be smaller";
+}
