@@ -11,7 +11,7 @@
 #include "quadsimp/io/mesh_io.h"
 #include "quadsimp/metrics/metrics.h"
 #include "quadsimp/reference/reference_surface.h"
-#include "quadsimp/simplify/simplify.h"
+#include "quadsimp/simplify/pipeline.h"
 #include "quadsimp/util/errors.h"
 
 #include <unistd.h>
@@ -51,6 +51,12 @@ void print_quality(const QuadQuality& q, const SurfaceDistance* d) {
                 "(max out->in %.3f, in->out %.3f), projectability %.2f%%\n",
                 1e3 * d->hausdorff, 1e3 * d->rms, 1e3 * d->mean_to_ref, 1e3 * d->max_to_ref, 1e3 * d->max_from_ref,
                 100 * d->projectability);
+}
+
+void print_summary(const SimplifyArgs& a, const QuadQuality& q, double seconds, const SimplifyReport& r) {
+  std::printf("%s -> %s: %u faces, regular %.1f%%, max valence %d, %.2f s (%u collapses, %u rotations)\n",
+              a.input.c_str(), a.output.c_str(), q.faces, q.regular_percent, q.max_valence, seconds, r.collapses,
+              r.rotations);
 }
 
 }  // namespace
@@ -100,56 +106,42 @@ int run_simplify(const SimplifyArgs& a) {
     std::cerr << "quadsimp simplify: " << err << "\n";
     return kBadArguments;
   }
-  if (!a.adaptive && (a.faces == 0 || a.auto_halt)) {
-    std::cerr << "quadsimp simplify: give --faces N (--auto-halt needs --adaptive)\n";
-    return kBadArguments;
-  }
-  if (a.adaptive && a.faces == 0 && !a.auto_halt) {
-    std::cerr << "quadsimp simplify: --adaptive needs --faces N or --auto-halt\n";
-    return kBadArguments;
-  }
-  if (a.faces && a.auto_halt) {
-    std::cerr << "quadsimp simplify: give either --faces or --auto-halt, not both\n";
+  SimplifyParams params;
+  params.target_faces = a.faces;
+  params.adaptive = a.adaptive;
+  params.auto_halt = a.auto_halt;
+  params.tau = a.tau;
+  params.m_factor = a.m_factor;
+  params.preserve_boundary = a.preserve_boundary;
+  if (const std::string why = check_params(params); !why.empty()) {
+    std::cerr << "quadsimp simplify: " << why << " (see --help)\n";
     return kBadArguments;
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
     Input in = load_input(a.input, {}, stderr_log(a.quiet));
-    const ReferenceSurface ref(std::move(in.reference));
-    SimplifyOptions opt;
-    opt.target_faces = a.faces;
-    opt.progress = progress_bar(a.quiet);
-    Fitmaps fitmaps;
-    if (a.adaptive) {
-      FitmapOptions fo;
-      fo.tau = a.tau;
-      fo.progress = opt.progress;
-      fitmaps = compute_fitmaps(ref.mesh(), fo);
-      opt.adaptive = true;
-      opt.fitmaps = &fitmaps;
-      opt.m_factor = a.m_factor;
-    }
-    const SimplifyReport r = simplify(in.quads, ref, opt);
+    const SimplifyReport r = simplify_input(in, params, progress_bar(a.quiet));
     write_quad_mesh(a.output, in.quads);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads);
-    if (a.json) {
+    if (a.json || a.stats) {
+      const ReferenceSurface ref(std::move(in.reference));
       const SurfaceDistance d = surface_distance(in.quads, ref, a.samples);
-      std::string j = to_json(quad_quality(in.quads, &ref), &d);
-      char extra[256];
-      std::snprintf(extra, sizeof extra, ", \"seconds\": %.4f, \"collapses\": %u, \"rotations\": %u, \"input_faces\": %u}",
-                    s, r.collapses, r.rotations, r.initial_faces);
-      j.pop_back();
-      std::printf("%s%s\n", j.c_str(), extra);
+      const QuadQuality full = quad_quality(in.quads, &ref);
+      if (a.json) {
+        std::string j = to_json(full, &d);
+        char extra[256];
+        std::snprintf(extra, sizeof extra, ", \"seconds\": %.4f, \"collapses\": %u, \"rotations\": %u, \"input_faces\": %u}",
+                      s, r.collapses, r.rotations, r.initial_faces);
+        j.pop_back();
+        std::printf("%s%s\n", j.c_str(), extra);
+        return kOk;
+      }
+      print_summary(a, q, s, r);
+      print_quality(full, &d);
       return kOk;
     }
-    std::printf("%s -> %s: %u faces, regular %.1f%%, max valence %d, %.2f s (%u collapses, %u rotations)\n",
-                a.input.c_str(), a.output.c_str(), q.faces, q.regular_percent, q.max_valence, s, r.collapses,
-                r.rotations);
-    if (a.stats) {
-      const SurfaceDistance d = surface_distance(in.quads, ref, a.samples);
-      print_quality(quad_quality(in.quads, &ref), &d);
-    }
+    print_summary(a, q, s, r);
     return kOk;
   } catch (const InvalidInput& e) {
     std::cerr << "quadsimp simplify: " << e.what() << "\n";

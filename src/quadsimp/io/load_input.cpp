@@ -2,27 +2,11 @@
 #include "quadsimp/io/load_input.h"
 
 #include "quadsimp/io/mesh_io.h"
-#include "quadsimp/util/errors.h"
 
 namespace qs {
 
 Input load_input(const std::string& path, const ConvertOptions& options, const LogFn& log) {
-  MeshFile file = read_mesh(path);
-  Input in;
-  in.reference = triangles_of(file);
-  in.clean = clean(in.reference, path, log);
-  in.was_pure_quad = file.is_pure_quad();
-  if (in.was_pure_quad) {
-    try {
-      in.quads = QuadMesh::from_faces(std::move(file.positions), file.quads);
-    } catch (const InvalidInput& e) {
-      throw InvalidInput(path + ": " + e.what());
-    }
-    if (log) log(path + ": already a pure quad mesh (" + std::to_string(in.quads.n_faces()) + " quads)");
-  } else {
-    in.quads = tri_to_quad(in.reference, options, &in.convert);
-  }
-  return in;
+  return prepare_input(read_mesh(path), path, options, log);
 }
 
 }  // namespace qs

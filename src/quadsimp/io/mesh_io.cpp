@@ -11,7 +11,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <unordered_map>
 
 #include <vcg/complex/complex.h>
 #include <wrap/io_trimesh/export_obj.h>
@@ -77,54 +76,27 @@ void load_vcg(const std::string& path, TMesh& m) {
   }
 }
 
-// Groups triangles joined through faux edges. A group of two triangles sharing one
-// faux edge is a quad; anything else stays triangles.
+// Triangles with their faux-edge bits, then quads rebuilt from the faux pairs.
 MeshFile regroup(const TMesh& m) {
-  MeshFile out;
-  out.positions.reserve(m.vert.size());
+  std::vector<Vec3> positions;
+  positions.reserve(m.vert.size());
   std::vector<int> vid(m.vert.size(), -1);
   for (std::size_t i = 0; i < m.vert.size(); ++i) {
     if (m.vert[i].IsD()) continue;
-    vid[i] = int(out.positions.size());
+    vid[i] = int(positions.size());
     const auto& p = m.vert[i].cP();
-    out.positions.emplace_back(p[0], p[1], p[2]);
+    positions.emplace_back(p[0], p[1], p[2]);
   }
   std::vector<std::array<Index, 3>> tris;
-  std::vector<unsigned> faux;  // 3 bits per triangle
+  std::vector<std::uint8_t> faux;
   for (const auto& f : m.face) {
     if (f.IsD()) continue;
     std::array<Index, 3> t;
     for (int k = 0; k < 3; ++k) t[k] = Index(vid[vcg::tri::Index(m, f.cV(k))]);
     tris.push_back(t);
-    faux.push_back(unsigned(f.IsF(0)) | unsigned(f.IsF(1)) << 1 | unsigned(f.IsF(2)) << 2);
+    faux.push_back(std::uint8_t(unsigned(f.IsF(0)) | unsigned(f.IsF(1)) << 1 | unsigned(f.IsF(2)) << 2));
   }
-  // Pair each triangle with the neighbour across its single faux edge.
-  std::unordered_map<std::uint64_t, Index> dir;
-  dir.reserve(3 * tris.size());
-  for (Index t = 0; t < tris.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-      dir[(std::uint64_t(tris[t][k]) << 32) | tris[t][(k + 1) % 3]] = t;
-  bool pure = !tris.empty();
-  std::vector<std::array<Index, 4>> quads;
-  for (Index t = 0; t < tris.size() && pure; ++t) {
-    const unsigned b = faux[t];
-    if (b != 1 && b != 2 && b != 4) { pure = false; break; }
-    const int k = b == 1 ? 0 : b == 2 ? 1 : 2;
-    const Index a = tris[t][k], c = tris[t][(k + 1) % 3], apex = tris[t][(k + 2) % 3];
-    auto it = dir.find((std::uint64_t(c) << 32) | a);
-    if (it == dir.end()) { pure = false; break; }
-    const Index u = it->second;
-    const auto& o = tris[u];
-    int j = 0;
-    while (!(o[j] == c && o[(j + 1) % 3] == a)) ++j;
-    if (!(faux[u] & (1u << j))) { pure = false; break; }
-    if (t < u) quads.push_back({apex, a, o[(j + 2) % 3], c});
-  }
-  if (pure && 2 * quads.size() == tris.size())
-    out.quads = std::move(quads);
-  else
-    out.triangles = std::move(tris);
-  return out;
+  return pair_faux_triangles(std::move(positions), std::move(tris), faux);
 }
 
 // Writes through a temporary file beside the target so that readers never see a
@@ -176,24 +148,6 @@ MeshFile read_mesh(const std::string& path) {
   load_vcg(path, m);
   if (m.vn == 0) fail(path, "the file holds no vertices (empty mesh)");
   return regroup(m);
-}
-
-TriMesh triangles_of(const MeshFile& file) {
-  TriMesh t;
-  t.positions = file.positions;
-  t.faces = file.triangles;
-  for (const auto& q : file.quads) {
-    const double d02 = (file.positions[q[0]] - file.positions[q[2]]).squaredNorm();
-    const double d13 = (file.positions[q[1]] - file.positions[q[3]]).squaredNorm();
-    if (d02 <= d13) {
-      t.faces.push_back({q[0], q[1], q[2]});
-      t.faces.push_back({q[0], q[2], q[3]});
-    } else {
-      t.faces.push_back({q[0], q[1], q[3]});
-      t.faces.push_back({q[1], q[2], q[3]});
-    }
-  }
-  return t;
 }
 
 void write_quad_mesh(const std::string& path, const QuadMesh& mesh) {

@@ -5,27 +5,17 @@
 #include <string>
 #include <vector>
 
+#include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/mesh/quad_mesh.h"
 #include "quadsimp/mesh/tri_mesh.h"
 
 namespace qs {
 
-//! What a mesh file held, as read (no cleaning yet). Either `quads` (the file was a
-//! pure quad mesh: quad polygons, or MeshLab triangle pairs sharing a faux edge) or
-//! `triangles` (anything else; other polygons are fan-triangulated).
-struct MeshFile {
-  std::vector<Vec3> positions;
-  std::vector<std::array<Index, 3>> triangles;
-  std::vector<std::array<Index, 4>> quads;
-  bool is_pure_quad() const { return !quads.empty() && triangles.empty(); }
-};
-
-//! Reads PLY (ascii/binary), OBJ, OFF or STL through vcglib's importers.
+//! Reads PLY (ascii/binary), OBJ, OFF or STL through vcglib's importers. Quads come
+//! back as quads whether the file has quad polygons or MeshLab's triangle pairs with
+//! faux-edge face flags (PLY saved with per-face flags); other polygons as triangles.
 //! \throw InvalidInput "PATH: reason" for unreadable, truncated or unknown files.
 MeshFile read_mesh(const std::string& path);
-
-//! The triangles of a file: its triangles, or its quads split along their shorter diagonal.
-TriMesh triangles_of(const MeshFile& file);
 
 //! Writes the quads of `mesh` as PLY (ASCII), OBJ or OFF, chosen by extension.
 //! The file appears atomically: written to a temporary beside it, then renamed.

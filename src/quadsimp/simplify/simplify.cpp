@@ -47,6 +47,9 @@ class Simplifier {
   float key(Index f, Index k) const;
   void push_face(Index f);
   bool place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
+  bool touches_kept_border(Index f, Index k) const {
+    return opt_.preserve_boundary && (m_.is_border_vertex(m_.vertex(f, k)) || m_.is_border_vertex(m_.vertex(f, k + 2)));
+  }
   bool exceeds_valence(Index f, Index k) const {
     return opt_.max_valence > 0 &&
            m_.valence(m_.vertex(f, k)) + m_.valence(m_.vertex(f, k + 2)) - 2 > opt_.max_valence;
@@ -299,6 +302,7 @@ void Simplifier::smooth_vertex(Index v) {
   Vec3 target = p;
   SurfacePoint foot;
   if (border) {
+    if (opt_.preserve_boundary) return;
     // Along the border only: springs to the two border neighbours.
     const Index h_out = m_.out(v);
     Index h_in = h_out;
@@ -440,7 +444,8 @@ SimplifyReport Simplifier::run() {
     if (!m_.is_face_live(e.face) || e.version != version_[e.face]) continue;
     Vec3 pos;
     SurfacePoint foot;
-    if (!can_collapse_diagonal(m_, e.face, e.k) || exceeds_valence(e.face, e.k) || !place(e.face, e.k, pos, foot) ||
+    if (!can_collapse_diagonal(m_, e.face, e.k) || exceeds_valence(e.face, e.k) || touches_kept_border(e.face, e.k) ||
+        !place(e.face, e.k, pos, foot) ||
         (opt_.adaptive && !m_fitmap_allows(e.face, e.k, pos))) {
       ++rep_.refused;  // the face comes back only when something around it changes
       continue;

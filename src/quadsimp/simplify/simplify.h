@@ -28,6 +28,9 @@ struct SimplifyOptions {
   //! Refuse collapses whose merged vertex would exceed this valence (0: no limit).
   //! The candidate comes back when its neighbourhood changes, as with any refusal.
   int max_valence = 6;
+  //! Keep the border exactly: no collapse touches a border vertex and smoothing does
+  //! not move them (border vertices otherwise slide along the border).
+  bool preserve_boundary = false;
   //! Edge rotations after each collapse (the paper's step 2).
   bool rotations = true;
   //! Called with the fraction done; returning false stops early with a valid mesh.

@@ -1,0 +1,30 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <string>
+
+#include "quadsimp/convert/tri_to_quad.h"
+#include "quadsimp/mesh/mesh_file.h"
+#include "quadsimp/mesh/quad_mesh.h"
+#include "quadsimp/mesh/tri_mesh.h"
+#include "quadsimp/util/progress.h"
+
+namespace qs {
+
+//! A mesh made ready for simplification.
+struct Input {
+  TriMesh reference;       //!< M0: the cleaned input triangles (quads split in two)
+  QuadMesh quads;          //!< the pure quad mesh to simplify
+  bool was_pure_quad = false;
+  CleanReport clean;
+  ConvertReport convert;   //!< empty when the input was already pure quad
+};
+
+//! Repairs what has a standard repair (logged through `log`) and converts triangles
+//! to quads; a pure quad mesh is taken as it is. `name` prefixes every message.
+//! The CLI (from a file) and the MeshLab plugins (from a layer) both come here.
+//! \throw InvalidInput "NAME: reason" for anything that cannot be used.
+Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions& options = {},
+                    const LogFn& log = {});
+
+}  // namespace qs

@@ -1,0 +1,31 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "quadsimp/mesh/tri_mesh.h"
+
+namespace qs {
+
+//! A mesh as a file or a host application holds it, before any cleaning: either
+//! `quads` (a pure quad mesh) or `triangles` (anything else).
+struct MeshFile {
+  std::vector<Vec3> positions;
+  std::vector<std::array<Index, 3>> triangles;
+  std::vector<std::array<Index, 4>> quads;
+  bool is_pure_quad() const { return !quads.empty() && triangles.empty(); }
+};
+
+//! Rebuilds quads from triangles that carry "faux" edge flags, the way vcglib and
+//! MeshLab store polygons: bit k of faux[t] marks edge k (corner k to k+1) of triangle
+//! t as the inner diagonal of a quad. If every triangle has exactly one faux edge,
+//! shared with its neighbour, the result holds quads; otherwise the triangles.
+MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array<Index, 3>> triangles,
+                             const std::vector<std::uint8_t>& faux);
+
+//! The triangles of a mesh: its triangles, or its quads split along their shorter diagonal.
+TriMesh triangles_of(const MeshFile& file);
+
+}  // namespace qs

@@ -1,0 +1,41 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/simplify/pipeline.h"
+
+#include <stdexcept>
+
+#include "quadsimp/fitmap/fitmap.h"
+#include "quadsimp/reference/reference_surface.h"
+
+namespace qs {
+
+std::string check_params(const SimplifyParams& p) {
+  if (!p.adaptive && p.auto_halt) return "automatic halting needs the adaptive mode";
+  if (!p.adaptive && p.target_faces == 0) return "the uniform mode needs a target number of faces";
+  if (p.adaptive && p.auto_halt && p.target_faces != 0) return "give either a target number of faces or automatic halting, not both";
+  if (p.adaptive && !p.auto_halt && p.target_faces == 0) return "the adaptive mode needs a target number of faces or automatic halting";
+  if (!(p.tau > 0 && p.tau < 1)) return "tau must be between 0 and 1";
+  if (!(p.m_factor > 0)) return "the M-fitmap factor must be positive";
+  return {};
+}
+
+SimplifyReport simplify_input(Input& in, const SimplifyParams& p, const ProgressFn& progress) {
+  if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
+  const ReferenceSurface ref(in.reference);
+  SimplifyOptions opt;
+  opt.target_faces = p.target_faces;
+  opt.preserve_boundary = p.preserve_boundary;
+  opt.progress = progress;
+  Fitmaps fitmaps;
+  if (p.adaptive) {
+    FitmapOptions fo;
+    fo.tau = p.tau;
+    fo.progress = progress;
+    fitmaps = compute_fitmaps(ref.mesh(), fo);
+    opt.adaptive = true;
+    opt.fitmaps = &fitmaps;
+    opt.m_factor = p.m_factor;
+  }
+  return simplify(in.quads, ref, opt);
+}
+
+}  // namespace qs

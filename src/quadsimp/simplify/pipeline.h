@@ -1,0 +1,27 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include "quadsimp/convert/prepare_input.h"
+#include "quadsimp/simplify/simplify.h"
+
+namespace qs {
+
+//! What a user chooses, in the CLI or in a MeshLab filter (the same names and defaults).
+struct SimplifyParams {
+  Index target_faces = 0;        //!< uniform: required; adaptive: optional
+  bool adaptive = false;
+  bool auto_halt = false;        //!< adaptive: run until no feasible collapse remains
+  double tau = 0.05;             //!< M-fitmap tolerance
+  double m_factor = 1.0;         //!< adaptive: face radius <= F_M / m_factor
+  bool preserve_boundary = false;
+};
+
+//! Checks a parameter combination; returns "" or the reason it is refused.
+std::string check_params(const SimplifyParams& params);
+
+//! The whole job on prepared input: reference surface, fitmaps in adaptive mode, then
+//! simplify(). `in.quads` is simplified in place. \throw std::invalid_argument for
+//! parameters check_params() refuses; Cancelled when `progress` says stop.
+SimplifyReport simplify_input(Input& in, const SimplifyParams& params, const ProgressFn& progress = {});
+
+}  // namespace qs
