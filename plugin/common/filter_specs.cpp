@@ -1,0 +1,86 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "filter_specs.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace qs::plugin {
+
+namespace {
+const std::string kCitation =
+    "<br><br>See: <i>G. Bozzo, D. Panozzo, E. Puppo, N. Pietroni, L. Rocca</i>, "
+    "<b>\"Adaptive Quad Mesh Simplification\"</b>, Eurographics Italian Chapter Conference 2010.";
+}
+
+const std::vector<FilterSpec>& filter_specs() {
+  static const std::vector<FilterSpec> specs = {
+      {kSimplify, "Quad Mesh Simplification", "meshing_quad_mesh_simplification",
+       "Simplifies a triangle or quad mesh into a coarser <b>pure quad mesh</b> (quadsimp). Triangles are "
+       "first paired into quads; then, one diagonal collapse at a time, the mesh is coarsened, with edge "
+       "rotations that favour valence 4, doublet and singlet removal, and tangent-space smoothing that keeps "
+       "every vertex on the input surface. <br><b>Uniform</b> mode collapses the shortest diagonal first and "
+       "stops at the target number of faces. <b>Adaptive</b> mode weights diagonals by the S-fitmap (small "
+       "faces where the surface is curved), refuses collapses that would make a face larger than the M-fitmap "
+       "allows (so that the result stays projectable onto the input), and can stop by itself when no feasible "
+       "collapse remains. <br>The result goes to a new layer; the input layer is not changed. Quads are stored "
+       "the MeshLab way, as triangle pairs with a faux shared edge: save as PLY with per-face flags, or as OBJ/OFF "
+       "with polygons, to keep them." + kCitation},
+      {kConvert, "Convert to Pure Quad Mesh", "meshing_tri_to_pure_quad",
+       "Turns a triangle mesh into a <b>pure quad mesh</b> without moving any vertex: triangles are paired "
+       "greedily into the best-shaped quads, every leftover is re-paired along the shortest alternating path, "
+       "and where no complete pairing exists a border edge is split at its midpoint. The input is cleaned "
+       "first (duplicate vertices, degenerate and duplicate faces, unreferenced vertices); non-manifold edges "
+       "are refused. The layer is replaced by its quads."},
+      {kFitmaps, "Compute Fitmaps", "compute_scalar_by_fitmap_per_vertex",
+       "Computes the <b>S-fitmap</b> (how fast the error of fitting a plane grows with the radius around each "
+       "vertex) and the <b>M-fitmap</b> (the largest radius around each vertex where a plane still faces the "
+       "same way as the surface, up to a tolerance tau) on the current mesh. Both are stored as per-vertex "
+       "attributes <i>FitmapS</i> and <i>FitmapM</i>; S is also copied to the vertex quality (use "
+       "<i>Colorize by vertex quality</i> to see it)." + kCitation},
+      {kQuality, "Quad Mesh Quality", "get_quad_mesh_quality_measures",
+       "Measures a pure quad mesh: face and vertex counts, maximum valence, share of regular vertices (valence "
+       "4 inside, 3 on the border), homeometry (edge length / mean edge and diagonal / (sqrt(2) mean edge), ideal "
+       "1), non-convex faces, and its distance to a reference layer (symmetric Hausdorff and RMS, and the "
+       "one-sided mean from the quads to the reference, in units of 1e-3 of the reference's bounding-box "
+       "diagonal). The values are printed in the log and returned."},
+  };
+  return specs;
+}
+
+const FilterSpec& filter_spec(FilterId id) {
+  for (const auto& s : filter_specs())
+    if (s.id == id) return s;
+  throw std::out_of_range("unknown quadsimp filter");
+}
+
+std::vector<ParamSpec> params_of(FilterId id) {
+  static const std::vector<ParamSpec> all = {
+      {kSimplify, "Adaptive", "Adaptive (fitmaps)", ParamKind::Bool, 0, 0, 1,
+       "Uniform (off): equal-sized quads, stop at the target. Adaptive (on): quad sizes follow the fitmaps."},
+      {kSimplify, "TargetFaceNum", "Target number of quads", ParamKind::Int, -1, 0, 1e9,
+       "Stop when the mesh has at most this many quads. Required in uniform mode; in adaptive mode it is "
+       "ignored when automatic halting is on. Default: a tenth of the input's quads."},
+      {kSimplify, "AutoHalt", "Automatic halting (adaptive)", ParamKind::Bool, 0, 0, 1,
+       "Adaptive mode only: ignore the target and stop when the M-fitmap allows no further collapse."},
+      {kSimplify, "Tau", "Fitmap tolerance tau", ParamKind::Float, 0.05, 0.001, 0.5,
+       "Adaptive mode: share of a neighbourhood allowed to face against its fitted plane in the M-fitmap "
+       "(0.05 in the paper). Larger values allow larger faces."},
+      {kSimplify, "PreserveBoundary", "Preserve boundary", ParamKind::Bool, 0, 0, 1,
+       "Keep the mesh border exactly: no collapse touches a border vertex and smoothing leaves them in place. "
+       "Off: border vertices stay on the border but may slide along it."},
+      {kFitmaps, "Tau", "Fitmap tolerance tau", ParamKind::Float, 0.05, 0.001, 0.5,
+       "Share of a neighbourhood allowed to face against its fitted plane before the M-fitmap stops growing."},
+      {kQuality, "ReferenceMesh", "Reference mesh", ParamKind::Mesh, 0, 0, 0,
+       "The layer the distance is measured to (usually the original triangle mesh)."},
+      {kQuality, "SampleNum", "Distance samples", ParamKind::Int, 200000, 1000, 1e8,
+       "Random points sampled on each surface (plus all vertices) for the distances."},
+  };
+  std::vector<ParamSpec> out;
+  for (const auto& p : all)
+    if (p.filter == id) out.push_back(p);
+  return out;
+}
+
+int default_target_faces(int n_triangles) { return std::max(6, n_triangles / 20); }
+
+}  // namespace qs::plugin

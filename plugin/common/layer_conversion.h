@@ -1,0 +1,93 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+// CMeshO <-> core meshes, written once for both MeshLab generations (their CMeshO
+// differ, the vcglib calls used here do not). Quads in a CMeshO are triangle pairs
+// whose shared edge is marked faux on both sides.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "quadsimp/mesh/mesh_file.h"
+#include "quadsimp/mesh/quad_mesh.h"
+#include "quadsimp/util/progress.h"
+
+namespace qs::plugin {
+
+//! The live vertices and faces of a MeshLab mesh, with quads rebuilt from faux pairs.
+//! Vertex i of the result is the i-th live vertex of `m`.
+template <class CMesh>
+MeshFile mesh_file_of(const CMesh& m) {
+  std::vector<Vec3> positions;
+  std::vector<int> id(m.vert.size(), -1);
+  for (std::size_t i = 0; i < m.vert.size(); ++i) {
+    if (m.vert[i].IsD()) continue;
+    id[i] = int(positions.size());
+    const auto& p = m.vert[i].cP();
+    positions.emplace_back(double(p[0]), double(p[1]), double(p[2]));
+  }
+  std::vector<std::array<Index, 3>> tris;
+  std::vector<std::uint8_t> faux;
+  tris.reserve(m.face.size());
+  for (const auto& f : m.face) {
+    if (f.IsD()) continue;
+    std::array<Index, 3> t;
+    for (int k = 0; k < 3; ++k) t[k] = Index(id[f.cV(k) - &m.vert[0]]);
+    tris.push_back(t);
+    faux.push_back(std::uint8_t(unsigned(f.IsF(0)) | unsigned(f.IsF(1)) << 1 | unsigned(f.IsF(2)) << 2));
+  }
+  return pair_faux_triangles(std::move(positions), std::move(tris), faux);
+}
+
+//! Replaces the content of `m` with the quads of `q`, each as two triangles split
+//! along its shorter diagonal, which is marked faux.
+template <class CMesh>
+void assign_quads(CMesh& m, const QuadMesh& q) {
+  using Alloc = typename vcg::tri::Allocator<CMesh>;
+  m.Clear();
+  std::vector<Index> id(q.vertex_capacity(), kNone);
+  Index n = 0;
+  for (Index v = 0; v < q.vertex_capacity(); ++v)
+    if (q.is_vertex_live(v)) id[v] = n++;
+  auto vi = Alloc::AddVertices(m, n);
+  for (Index v = 0; v < q.vertex_capacity(); ++v)
+    if (q.is_vertex_live(v)) {
+      const Vec3& p = q.position(v);
+      m.vert[id[v]].P() = typename CMesh::CoordType(p.x(), p.y(), p.z());
+    }
+  (void)vi;
+  Alloc::AddFaces(m, 2 * std::size_t(q.n_faces()));
+  std::size_t f = 0;
+  for (Index face = 0; face < q.face_capacity(); ++face) {
+    if (!q.is_face_live(face)) continue;
+    auto c = q.face_vertices(face);
+    // Rotate so that the shorter diagonal is c0-c2.
+    if ((q.position(c[0]) - q.position(c[2])).squaredNorm() > (q.position(c[1]) - q.position(c[3])).squaredNorm())
+      c = {c[1], c[2], c[3], c[0]};
+    auto& t1 = m.face[f++];
+    auto& t2 = m.face[f++];
+    t1.V(0) = &m.vert[id[c[0]]], t1.V(1) = &m.vert[id[c[1]]], t1.V(2) = &m.vert[id[c[2]]];
+    t2.V(0) = &m.vert[id[c[0]]], t2.V(1) = &m.vert[id[c[2]]], t2.V(2) = &m.vert[id[c[3]]];
+    t1.ClearAllF();
+    t2.ClearAllF();
+    t1.SetF(2);  // c2 -> c0
+    t2.SetF(0);  // c0 -> c2
+  }
+}
+
+//! MeshLab's progress callback (vcg::CallBackPos, the same in both generations) as the
+//! core's ProgressFn, called only when the percentage changes (meshlabserver prints
+//! every call). MeshLab has no cancel button for filters: always continue.
+template <class CallBack>
+ProgressFn progress_of(CallBack* cb) {
+  if (!cb) return {};
+  return [cb, last = -1](float f, std::string_view stage) mutable {
+    const int percent = int(100 * f);
+    if (percent != last) {
+      last = percent;
+      cb(percent, (std::string(stage) + " ").c_str());
+    }
+    return true;
+  };
+}
+
+}  // namespace qs::plugin

@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# meshlabserver (MeshLab 2020.09) with the quadsimp plugin:
+#  - the filter dump lists all four filters and their parameters;
+#  - the example .mlx script simplifies a generated torus and the shared bunny, and the
+#    PLY saved with face flags (-m ff) reads back as a valid pure quad mesh with the
+#    target face count (within 1%);
+#  - the plugin and the CLI give the same result for the same input and parameters;
+#  - a point cloud makes the filter fail with our message, without crashing MeshLab.
+# Usage: meshlabserver_test.sh PLUGIN.so QUADSIMP_CLI REPO_DIR DATASETS_DIR
+set -euo pipefail
+plugin=$1 cli=$2 repo=$3 datasets=$4
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/meshlab_env.sh"
+ml_env_setup "$plugin"
+work=$ML_ROOT/work
+mkdir -p "$work"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+server() { ml_run meshlabserver "$@" >"$work/server.log" 2>&1; }
+json() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])" "$1" "$2"; }
+
+# 1. The dump lists the four filters with their parameter labels.
+server -d "$work/dump.txt" || true
+for f in "Quad Mesh Simplification" "Convert to Pure Quad Mesh" "Compute Fitmaps" "Quad Mesh Quality"; do
+  grep -q "section .* $f" "$work/dump.txt" || fail "filter '$f' missing from meshlabserver -d"
+done
+for p in "Adaptive (fitmaps)" "Target number of quads" "Automatic halting (adaptive)" "Fitmap tolerance tau" \
+         "Preserve boundary" "Reference mesh" "Distance samples"; do
+  grep -q "$p" "$work/dump.txt" || fail "parameter '$p' missing from meshlabserver -d"
+done
+
+# 2. The example script on a generated torus and on the bunny.
+python3 "$repo/datasets/make_torus.py" "$work/torus.ply" 96 48
+script=$repo/plugin/meshlab2020/examples/quad_simplification.mlx
+run_case() {  # input target
+  local in=$1 target=$2 name
+  name=$(basename "$in")
+  sed "s/name=\"TargetFaceNum\" type=\"RichInt\" value=\"[0-9]*\"/name=\"TargetFaceNum\" type=\"RichInt\" value=\"$target\"/" \
+    "$script" >"$work/script.mlx"
+  if ! server -i "$in" -o "$work/$name.quads.ply" -m ff -s "$work/script.mlx"; then
+    fail "meshlabserver failed on $name"; cat "$work/server.log"; return
+  fi
+  if ! "$cli" stats "$in" "$work/$name.quads.ply" --json --samples 50000 >"$work/$name.json"; then
+    fail "$name: the saved result is not a valid pure quad mesh"; return
+  fi
+  local faces
+  faces=$(json "$work/$name.json" faces)
+  python3 -c "import sys; f,t=int(sys.argv[1]),int(sys.argv[2]); sys.exit(0 if abs(f-t) <= 0.01*t else 1)" \
+    "$faces" "$target" || fail "$name: $faces faces, target $target"
+  echo "ok: $name -> $faces quads (target $target)"
+}
+run_case "$work/torus.ply" 500
+bunny=$datasets/bunny.ply
+[ -f "$bunny" ] || bunny=/usr/share/glmark2/models/bunny.obj
+run_case "$bunny" 3000
+
+# 3. Same input, same parameters: the CLI gives the same mesh (up to float rounding of
+#    the coordinates MeshLab stores).
+"$cli" simplify "$bunny" "$work/cli.ply" --faces 3000 -q >/dev/null
+"$cli" stats "$bunny" "$work/cli.ply" --json --samples 50000 >"$work/cli.json"
+python3 - "$work/cli.json" "$work/$(basename "$bunny").json" <<'PY' || fail "plugin and CLI results differ"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+for k in ("faces", "vertices", "max_valence", "regular_percent", "valence4_percent", "nonconvex_faces"):
+    assert a[k] == b[k], (k, a[k], b[k])
+for k in ("homeometry_min", "homeometry_max", "mean_edge", "hausdorff_e3", "rms_e3", "mean_to_ref_e3"):
+    assert abs(a[k] - b[k]) <= 0.01 * max(abs(a[k]), 1e-9), (k, a[k], b[k])
+print("ok: plugin and CLI agree:", {k: a[k] for k in ("faces", "regular_percent", "rms_e3")})
+PY
+
+# 4. A point cloud: the filter refuses with our message; MeshLab does not crash.
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n' >"$work/cloud.ply"
+set +e
+ml_run meshlabserver -i "$work/cloud.ply" -o "$work/cloud_out.ply" -s "$script" >"$work/cloud.log" 2>&1
+code=$?
+set -e
+# A signal shows as 128+n; meshlabserver's own error exit is 255.
+if [ "$code" -gt 128 ] && [ "$code" -lt 192 ]; then fail "meshlabserver crashed on a point cloud (exit $code)"; fi
+grep -q "point cloud" "$work/cloud.log" || { fail "no clear message for a point cloud"; cat "$work/cloud.log"; }
+
+# 5. The other three filters, chained on the torus: convert (in place), fitmaps, quality.
+cat >"$work/others.mlx" <<'MLX'
+<!DOCTYPE FilterScript>
+<FilterScript>
+ <filter name="Convert to Pure Quad Mesh"/>
+ <filter name="Compute Fitmaps">
+  <Param name="Tau" type="RichFloat" value="0.05"/>
+ </filter>
+ <filter name="Quad Mesh Quality">
+  <Param name="ReferenceMesh" type="RichMesh" value="0"/>
+  <Param name="SampleNum" type="RichInt" value="20000"/>
+ </filter>
+</FilterScript>
+MLX
+if server -i "$work/torus.ply" -o "$work/torus_converted.ply" -m ff vq -s "$work/others.mlx" -l "$work/others.log"; then
+  grep -q "fitmaps of" "$work/others.log" || fail "Compute Fitmaps did not report"
+  grep -q "Hausdorff" "$work/others.log" || fail "Quad Mesh Quality did not report"
+  grep -q "property float quality" "$work/torus_converted.ply" || fail "no vertex quality (S fitmap) saved"
+  "$cli" stats "$work/torus.ply" "$work/torus_converted.ply" --json --samples 20000 >"$work/conv.json" \
+    || fail "the converted torus is not a valid pure quad mesh"
+  [ "$(json "$work/conv.json" faces)" = 4608 ] || fail "the torus should convert to 4608 quads"
+  echo "ok: convert, fitmaps and quality filters"
+else
+  fail "the convert/fitmaps/quality script failed"; cat "$work/server.log"
+fi
+
+if [ "$failures" -gt 0 ]; then echo "$failures failed"; exit 1; fi
+echo "meshlabserver tests passed"
