@@ -37,6 +37,17 @@ fi
 
 [ -f /usr/share/glmark2/models/bunny.obj ] || die "glmark2-data is installed but bunny.obj is missing."
 
+# A venv with pymeshlab 2025.7 (PyPI): the MeshLab 2025.07 plugin links against the
+# libmeshlab-common.so inside its wheel, and the Python tests run in it.
+venv="${QS_VENV_DIR:-$here/.venv}"
+if ! "$venv/bin/python" -c "import pymeshlab, pytest, sys; sys.exit(0 if pymeshlab.__file__ else 1)" 2>/dev/null \
+   || ! "$venv/bin/python" -m pip show pymeshlab 2>/dev/null | grep -q "^Version: 2025.7$"; then
+  echo "setup: creating $venv with pymeshlab==2025.7"
+  python3 -m venv "$venv" || die "could not create the Python venv $venv (python3-venv)."
+  "$venv/bin/python" -m pip install -q --disable-pip-version-check "pymeshlab==2025.7" pytest \
+    || die "pip could not install pymeshlab==2025.7 and pytest from PyPI into $venv."
+fi
+
 [ "${QS_SKIP_MESHLAB_SRC:-0}" = 1 ] && { echo "setup: done (packages only)"; exit 0; }
 
 # MeshLab source trees: headers of both plugin API generations, and vcglib for I/O.

@@ -109,6 +109,7 @@ void run_quality(const MeshFile& quads, const std::string& quads_name, const Mes
               {"mean_to_reference_e3", 1e3 * d.mean_to_ref},
               {"max_to_reference_e3", 1e3 * d.max_to_ref},
               {"max_from_reference_e3", 1e3 * d.max_from_ref},
+              {"rms_to_reference_e3", 1e3 * d.rms_to_ref},
               {"projectability", d.projectability},
               {"reference_diagonal", ref.bbox_diagonal()}};
   o.log.push_back(quads_name + format(": %g quads, max valence %g, regular %.1f%%, ", qq.faces, qq.max_valence,

@@ -35,7 +35,9 @@ MeshFilterInterface::FILTER_ARITY QuadsimpFilterPlugin::filterArity(QAction* a) 
   return ID(a) == kQuality ? FIXED : SINGLE_MESH;
 }
 
-int QuadsimpFilterPlugin::getPreConditions(QAction*) const { return MeshModel::MM_FACENUMBER; }
+// No framework precondition: our own check names the layer and says why (a point cloud,
+// no faces), where the framework would only say "no faces".
+int QuadsimpFilterPlugin::getPreConditions(QAction*) const { return MeshModel::MM_NONE; }
 
 int QuadsimpFilterPlugin::postCondition(QAction* a) const {
   switch (ID(a)) {

@@ -1,0 +1,159 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "filter_quadsimp.h"
+
+#include <common/mlexception.h>
+
+#include <exception>
+
+#include "filter_runner.h"
+#include "filter_specs.h"
+#include "layer_conversion.h"
+#include "quadsimp/util/errors.h"
+
+using namespace qs::plugin;
+
+QuadsimpFilterPlugin::QuadsimpFilterPlugin() {
+  for (const auto& f : filter_specs()) typeList.push_back(f.id);
+  for (ActionIDType t : types()) actionList.push_back(new QAction(filterName(t), this));
+}
+
+QString QuadsimpFilterPlugin::pluginName() const { return "FilterQuadsimp"; }
+
+QString QuadsimpFilterPlugin::filterName(ActionIDType f) const { return filter_spec(FilterId(f)).name; }
+
+QString QuadsimpFilterPlugin::pythonFilterName(ActionIDType f) const { return filter_spec(FilterId(f)).python_name; }
+
+QString QuadsimpFilterPlugin::filterInfo(ActionIDType f) const {
+  return QString::fromStdString(filter_spec(FilterId(f)).info);
+}
+
+FilterPlugin::FilterClass QuadsimpFilterPlugin::getClass(const QAction* a) const {
+  switch (ID(a)) {
+    case kFitmaps: return FilterClass(Quality | VertexColoring);
+    case kQuality: return Measure;
+    default: return FilterClass(Remeshing | Polygonal);
+  }
+}
+
+FilterPlugin::FilterArity QuadsimpFilterPlugin::filterArity(const QAction* a) const {
+  return ID(a) == kQuality ? FIXED : SINGLE_MESH;
+}
+
+// No framework precondition: our own check names the layer and says why (a point cloud,
+// no faces), where the framework would only say "no faces".
+int QuadsimpFilterPlugin::getPreConditions(const QAction*) const { return MeshModel::MM_NONE; }
+
+int QuadsimpFilterPlugin::postCondition(const QAction* a) const {
+  switch (ID(a)) {
+    case kConvert: return MeshModel::MM_ALL;
+    case kFitmaps: return MeshModel::MM_VERTQUALITY;
+    default: return MeshModel::MM_NONE;
+  }
+}
+
+RichParameterList QuadsimpFilterPlugin::initParameterList(const QAction* a, const MeshDocument& md) {
+  RichParameterList list;
+  const MeshModel* current = md.mm();
+  for (const ParamSpec& p : params_of(FilterId(ID(a)))) {
+    const QString key = p.key, label = p.label, help = p.help;
+    switch (p.kind) {
+      case ParamKind::Bool: list.addParam(RichBool(key, p.value != 0, label, help)); break;
+      case ParamKind::Float: list.addParam(RichFloat(key, Scalarm(p.value), label, help)); break;
+      case ParamKind::Int: {
+        int def = int(p.value);
+        if (def < 0) def = default_target_faces(current ? int(current->cm.fn) : 0);
+        list.addParam(RichInt(key, def, label, help));
+        break;
+      }
+      case ParamKind::Mesh: list.addParam(RichMesh(key, current ? current->id() : 0, &md, label, help)); break;
+    }
+  }
+  return list;
+}
+
+namespace {
+
+std::map<std::string, QVariant> run(int id, const RichParameterList& params, MeshDocument& md, vcg::CallBackPos* cb,
+                                    const MeshLabPluginLogger& logger) {
+  MeshModel* m = md.mm();
+  if (!m) throw qs::InvalidInput("there is no current mesh");
+  const std::string name = m->label().toStdString();
+  if (m->cm.fn == 0)
+    throw qs::InvalidInput(name + ": the layer has no faces (" + std::to_string(m->cm.vn) +
+                           " vertices: a point cloud?); quadsimp needs a triangle surface");
+  Outcome out;
+  switch (id) {
+    case kSimplify: {
+      qs::SimplifyParams p;
+      p.adaptive = params.getBool("Adaptive");
+      p.auto_halt = params.getBool("AutoHalt");
+      p.target_faces = p.adaptive && p.auto_halt ? 0 : qs::Index(std::max(0, params.getInt("TargetFaceNum")));
+      p.tau = params.getFloat("Tau");
+      p.preserve_boundary = params.getBool("PreserveBoundary");
+      if (const std::string why = qs::check_params(p); !why.empty()) throw std::invalid_argument(why);
+      const qs::QuadMesh q = run_simplification(mesh_file_of(m->cm), name, p, progress_of(cb), out);
+      MeshModel* result = md.addNewMesh("", m->label() + " quads", true);
+      assign_quads(result->cm, q);
+      result->updateBoxAndNormals();
+      break;
+    }
+    case kConvert: {
+      const qs::QuadMesh q = run_conversion(mesh_file_of(m->cm), name, out);
+      assign_quads(m->cm, q);
+      m->clearDataMask(MeshModel::MM_FACEFACETOPO | MeshModel::MM_VERTFACETOPO);
+      m->updateBoxAndNormals();
+      break;
+    }
+    case kFitmaps: {
+      const qs::Fitmaps f = run_fitmaps(mesh_file_of(m->cm), name, params.getFloat("Tau"), progress_of(cb), out);
+      m->updateDataMask(MeshModel::MM_VERTQUALITY);
+      auto s = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(m->cm, "FitmapS");
+      auto mm = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(m->cm, "FitmapM");
+      std::size_t i = 0;
+      for (std::size_t v = 0; v < m->cm.vert.size(); ++v) {
+        if (m->cm.vert[v].IsD()) continue;
+        s[v] = f.s[i];
+        mm[v] = f.m[i];
+        m->cm.vert[v].Q() = f.s[i];
+        ++i;
+      }
+      break;
+    }
+    case kQuality: {
+      const MeshModel* ref = md.getMesh(params.getMeshId("ReferenceMesh"));
+      if (!ref) throw qs::InvalidInput("choose a reference mesh");
+      run_quality(mesh_file_of(m->cm), name, mesh_file_of(ref->cm), ref->label().toStdString(),
+                  unsigned(std::max(1000, params.getInt("SampleNum"))), out);
+      break;
+    }
+    default: throw std::invalid_argument("unknown filter");
+  }
+  for (const std::string& line : out.log) logger.log(line);
+  std::map<std::string, QVariant> values;
+  for (const auto& [k, v] : out.values) values[k] = QVariant(v);
+  return values;
+}
+
+}  // namespace
+
+std::map<std::string, QVariant> QuadsimpFilterPlugin::applyFilter(const QAction* a, const RichParameterList& params,
+                                                                  MeshDocument& md, unsigned int& postConditionMask,
+                                                                  vcg::CallBackPos* cb) {
+  // MeshLab 2025 reports failures through MLException (pymeshlab turns it into a
+  // Python exception); nothing else may escape.
+  try {
+    auto values = run(ID(a), params, md, cb, *this);
+    postConditionMask = postCondition(a);
+    return values;
+  } catch (const qs::InvalidInput& e) {
+    throw MLException(QString::fromStdString(e.what()));
+  } catch (const std::invalid_argument& e) {
+    throw MLException(QString("Invalid parameters: ") + e.what());
+  } catch (const MLException&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw MLException(QString("quadsimp internal error: ") + e.what());
+  }
+}
+
+MESHLAB_PLUGIN_NAME_EXPORTER(QuadsimpFilterPlugin)

@@ -1,0 +1,158 @@
+# quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+"""The MeshLab 2025.07 plugin inside pymeshlab 2025.7."""
+import json
+import subprocess
+
+import numpy as np
+import pymeshlab
+import pytest
+
+import quadsimp_pymeshlab
+from conftest import is_pure_quad, open_grid
+
+
+def test_plugin_loads_and_filters_are_methods():
+    names = pymeshlab.filter_list()
+    for name in quadsimp_pymeshlab.FILTERS:
+        assert name in names
+        assert callable(getattr(pymeshlab.MeshSet, name))
+    assert quadsimp_pymeshlab.load() == quadsimp_pymeshlab.load()  # idempotent
+
+
+@pytest.mark.parametrize("target", [3000, 800])
+def test_simplification_on_the_bunny(bunny_path, target):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(bunny_path)
+    input_faces = ms.current_mesh().face_number()
+    ms.meshing_quad_mesh_simplification(targetfacenum=target)
+    assert ms.mesh_number() == 2, "the result is a new layer"
+    assert ms.mesh(0).face_number() == input_faces, "the input layer is untouched"
+    out = ms.current_mesh()
+    assert is_pure_quad(out)
+    assert len(out.polygonal_face_list()) == target
+
+
+def border_points(mesh):
+    """Vertices on the border of a pymeshlab mesh (edges used by one polygon only)."""
+    count = {}
+    for poly in mesh.polygonal_face_list():
+        poly = [int(i) for i in poly]
+        for a, b in zip(poly, poly[1:] + poly[:1]):
+            count[(min(a, b), max(a, b))] = count.get((min(a, b), max(a, b)), 0) + 1
+    ids = {v for e, n in count.items() if n == 1 for v in e}
+    return {tuple(np.round(mesh.vertex_matrix()[v], 9)) for v in ids}
+
+
+@pytest.mark.parametrize("preserve", [False, True])
+def test_simplification_on_a_generated_open_mesh(preserve):
+    ms = pymeshlab.MeshSet()
+    grid = open_grid()
+    ms.add_mesh(grid, "grid")
+    ms.meshing_quad_mesh_simplification(targetfacenum=800, preserveboundary=preserve)
+    out = ms.current_mesh()
+    assert is_pure_quad(out)
+    assert len(out.polygonal_face_list()) == 800
+    v = out.vertex_matrix()
+    # The border stays on the square's sides; with preserveboundary it stays exactly.
+    side = np.minimum.reduce([np.abs(v[:, 0]), np.abs(v[:, 0] - 1), np.abs(v[:, 1]), np.abs(v[:, 1] - 1)])
+    border = border_points(out)
+    assert all(min(abs(x), abs(x - 1), abs(y), abs(y - 1)) < 1e-6 for x, y, _ in border)
+    if preserve:
+        ms2 = pymeshlab.MeshSet()
+        ms2.add_mesh(grid, "grid")
+        ms2.meshing_tri_to_pure_quad()
+        assert border == border_points(ms2.current_mesh())
+    assert side.min() < 1e-6
+
+
+def test_adaptive_with_automatic_halting():
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(open_grid(40), "grid")
+    ms.meshing_quad_mesh_simplification(adaptive=True, autohalt=True)
+    out = ms.current_mesh()
+    assert is_pure_quad(out)
+    assert 0 < len(out.polygonal_face_list()) < 40 * 40
+
+
+def test_conversion(bunny_path):
+    for mesh in (open_grid(), None):
+        ms = pymeshlab.MeshSet()
+        if mesh is None:
+            ms.load_new_mesh(bunny_path)
+        else:
+            ms.add_mesh(mesh, "grid")
+        triangles = ms.current_mesh().face_number()
+        ms.meshing_tri_to_pure_quad()
+        out = ms.current_mesh()
+        assert is_pure_quad(out)
+        assert len(out.polygonal_face_list()) >= triangles // 2
+
+
+def test_fitmaps_on_the_bunny_and_a_grid(bunny_path):
+    for mesh in (open_grid(), None):
+        ms = pymeshlab.MeshSet()
+        if mesh is None:
+            ms.load_new_mesh(bunny_path)
+        else:
+            ms.add_mesh(mesh, "grid")
+        ms.compute_scalar_by_fitmap_per_vertex(tau=0.05)
+        m = ms.current_mesh()
+        s = m.vertex_scalar_array()
+        assert s.shape[0] == m.vertex_number()
+        assert np.all(np.isfinite(s)) and np.all(s >= 0) and s.max() > 0
+        fs = m.vertex_custom_scalar_attribute_array("FitmapS")
+        fm = m.vertex_custom_scalar_attribute_array("FitmapM")
+        assert np.allclose(fs, s)  # S is also the vertex quality
+        assert np.all(fm > 0)
+
+
+def simplified(bunny_path, target=2000):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(bunny_path)
+    ms.meshing_quad_mesh_simplification(targetfacenum=target)
+    return ms
+
+
+def test_quality_values_and_distance_agree_with_meshlab(bunny_path):
+    ms = simplified(bunny_path)
+    q = ms.get_quad_mesh_quality_measures(referencemesh=0, samplenum=200000)
+    assert q["faces"] == 2000
+    assert 0 < q["regular_percent"] <= 100 and q["max_valence"] >= 4
+    # MeshLab's own one-sided Hausdorff filter from the quads (layer 1) to the input.
+    h = ms.get_hausdorff_distance(sampledmesh=1, targetmesh=0, samplevert=False, sampleface=True,
+                                  samplenum=200000, maxdist=pymeshlab.PercentageValue(50))
+    diag = q["reference_diagonal"]
+    ours = {"mean": q["mean_to_reference_e3"], "RMS": q["rms_to_reference_e3"]}
+    for key, value in ours.items():
+        theirs = 1e3 * h[key] / diag
+        assert abs(value - theirs) <= 0.1 * theirs, (key, value, theirs)
+
+
+def test_bad_input_raises_a_python_exception():
+    ms = pymeshlab.MeshSet()
+    cloud = pymeshlab.Mesh(vertex_matrix=np.random.default_rng(1).random((50, 3)))
+    ms.add_mesh(cloud, "cloud")
+    with pytest.raises(pymeshlab.PyMeshLabException) as e:
+        ms.meshing_quad_mesh_simplification(targetfacenum=10)
+    assert "point cloud" in str(e.value)
+    ms2 = pymeshlab.MeshSet()
+    ms2.add_mesh(open_grid(10), "grid")
+    with pytest.raises(pymeshlab.PyMeshLabException) as e:
+        ms2.meshing_quad_mesh_simplification(adaptive=False, autohalt=True)
+    assert "adaptive" in str(e.value)
+
+
+def test_same_result_as_the_cli(bunny_path, cli, tmp_path):
+    ms = simplified(bunny_path, 3000)
+    q = ms.get_quad_mesh_quality_measures(referencemesh=0, samplenum=100000)
+    out = tmp_path / "cli.ply"
+    subprocess.run([cli, "simplify", bunny_path, str(out), "--faces", "3000", "-q"], check=True,
+                   stdout=subprocess.DEVNULL)
+    stats = json.loads(subprocess.run([cli, "stats", bunny_path, str(out), "--json", "--samples", "100000"],
+                                      check=True, capture_output=True, text=True).stdout)
+    for key in ("faces", "vertices", "max_valence"):
+        assert q[key] == stats[key], key
+    for ours, theirs in (("regular_percent", "regular_percent"), ("homeometry_min", "homeometry_min"),
+                         ("homeometry_max", "homeometry_max"), ("rms_e3", "rms_e3"),
+                         ("mean_to_reference_e3", "mean_to_ref_e3")):
+        assert q[ours] == pytest.approx(stats[theirs], rel=0.01), ours
