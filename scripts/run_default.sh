@@ -8,5 +8,5 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 input=/usr/share/glmark2/models/bunny.obj
 output="$here/out/bunny_quads.ply"
 mkdir -p "$here/out"
-"$here/build/src/quadsimp" convert "$input" "$output"
-echo "result: $output"
+"$here/build/src/quadsimp" simplify "$input" "$output" --faces 5000 --stats
+echo "result: $output (5,000 quads; open it in MeshLab, or: build/src/quadsimp stats $input $output)"

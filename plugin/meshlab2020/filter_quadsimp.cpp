@@ -97,6 +97,7 @@ bool QuadsimpFilterPlugin::run(int id, MeshDocument& md, const RichParameterList
       p.target_faces = p.adaptive && p.auto_halt ? 0 : qs::Index(std::max(0, params.getInt("TargetFaceNum")));
       p.tau = params.getFloat("Tau");
       p.preserve_boundary = params.getBool("PreserveBoundary");
+      p.fast = params.getBool("Fast");
       if (const std::string why = qs::check_params(p); !why.empty()) throw std::invalid_argument(why);
       const qs::QuadMesh q = run_simplification(mesh_file_of(m->cm), name, p, progress_of(cb), out);
       MeshModel* result = md.addNewMesh("", m->label() + " quads", true);

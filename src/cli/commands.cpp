@@ -113,6 +113,7 @@ int run_simplify(const SimplifyArgs& a) {
   params.tau = a.tau;
   params.m_factor = a.m_factor;
   params.preserve_boundary = a.preserve_boundary;
+  params.fast = a.fast;
   if (const std::string why = check_params(params); !why.empty()) {
     std::cerr << "quadsimp simplify: " << why << " (see --help)\n";
     return kBadArguments;

@@ -25,7 +25,7 @@ for f in "Quad Mesh Simplification" "Convert to Pure Quad Mesh" "Compute Fitmaps
   grep -q "section .* $f" "$work/dump.txt" || fail "filter '$f' missing from meshlabserver -d"
 done
 for p in "Adaptive (fitmaps)" "Target number of quads" "Automatic halting (adaptive)" "Fitmap tolerance tau" \
-         "Preserve boundary" "Reference mesh" "Distance samples"; do
+         "Preserve boundary" "Fast (one pass)" "Reference mesh" "Distance samples"; do
   grep -q "$p" "$work/dump.txt" || fail "parameter '$p' missing from meshlabserver -d"
 done
 

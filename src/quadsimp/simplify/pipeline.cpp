@@ -24,6 +24,7 @@ SimplifyReport simplify_input(Input& in, const SimplifyParams& p, const Progress
   SimplifyOptions opt;
   opt.target_faces = p.target_faces;
   opt.preserve_boundary = p.preserve_boundary;
+  opt.passes = p.fast ? 1 : 2;
   opt.progress = progress;
   Fitmaps fitmaps;
   if (p.adaptive) {

@@ -14,6 +14,7 @@ struct SimplifyParams {
   double tau = 0.05;             //!< M-fitmap tolerance
   double m_factor = 1.0;         //!< adaptive: face radius <= F_M / m_factor
   bool preserve_boundary = false;
+  bool fast = false;             //!< one optimisation pass per collapse (the paper's loop)
 };
 
 //! Checks a parameter combination; returns "" or the reason it is refused.

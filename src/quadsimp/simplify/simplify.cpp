@@ -410,6 +410,16 @@ void Simplifier::cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& fo
   if (opt_.rotations) rotate_in_region();
   // Faces that rotations or cleaning touched may have died since; smooth the rest.
   smooth_region();
+  for (int pass = 1; pass < opt_.passes; ++pass) {
+    // Smoothing moved the zone: rotations the fold and convexity checks refused may
+    // pass now, and the faces around the smoothed vertices get their turn too.
+    // Measured on the paper's models: +4 to +6 points of regular vertices for about
+    // twice the time (bench/RESULTS.md).
+    region_faces_.clear();
+    for (Index x : region_verts_) add_faces_around(x, region_faces_);
+    if (opt_.rotations) rotate_in_region();
+    smooth_region();
+  }
   requeue_region();
 }
 

@@ -31,6 +31,9 @@ struct SimplifyOptions {
   //! Keep the border exactly: no collapse touches a border vertex and smoothing does
   //! not move them (border vertices otherwise slide along the border).
   bool preserve_boundary = false;
+  //! Rotation + smoothing passes after each collapse. The paper does one; a second
+  //! one over the smoothed zone gives more regular meshes for about twice the time.
+  int passes = 2;
   //! Edge rotations after each collapse (the paper's step 2).
   bool rotations = true;
   //! Called with the fraction done; returning false stops early with a valid mesh.
