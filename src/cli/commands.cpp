@@ -132,8 +132,11 @@ int run_simplify(const SimplifyArgs& a) {
       if (a.json) {
         std::string j = to_json(full, &d);
         char extra[256];
-        std::snprintf(extra, sizeof extra, ", \"seconds\": %.4f, \"collapses\": %u, \"rotations\": %u, \"input_faces\": %u}",
-                      s, r.collapses, r.rotations, r.initial_faces);
+        std::snprintf(extra, sizeof extra,
+                      ", \"seconds\": %.4f, \"collapses\": %u, \"rotations\": %u, \"input_faces\": %u, "
+                      "\"refused\": {\"topology\": %u, \"valence\": %u, \"geometry\": %u, \"fitmap\": %u}}",
+                      s, r.collapses, r.rotations, r.initial_faces, r.refused_topology, r.refused_valence,
+                      r.refused_geometry, r.refused_fitmap);
         j.pop_back();
         std::printf("%s%s\n", j.c_str(), extra);
         return kOk;

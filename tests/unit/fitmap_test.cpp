@@ -142,7 +142,7 @@ TEST(Adaptive, m_fitmap_refuses_collapses_that_grow_faces_past_it) {
   opt.fitmaps = &f;
   const SimplifyReport r = simplify(q, ref, opt);
   EXPECT_EQ(r.collapses, 0u);
-  EXPECT_GT(r.refused, 0u);
+  EXPECT_GT(r.refused_fitmap, 0u);
   EXPECT_EQ(q.n_faces(), before);
   validate(q);
 }

@@ -162,30 +162,43 @@ int Simplifier::target_valence_of_border(Index v) const {
 // of the current mesh there (the faces around both ends), or the border end.
 bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
   const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
-  pos = collapse_position(m_, f, k);
-  if (!m_.is_border_vertex(a) && !m_.is_border_vertex(c)) {
-    const Vec3 n = vertex_normal(a) + vertex_normal(c);
-    foot = ref_.project(pos, n, 2 * norm_of_diagonal(m_, f, k));
-  } else {
-    foot = ref_.closest(pos);  // the border end is on M0 already: this finds its triangle
+  auto shape_after = [&](const Vec3& p, const Vec3& p_normal) {
+    bool ok = true;
+    for (Index x : {a, c}) {
+      m_.for_each_outgoing(x, [&](Index h) {
+        const Index g = QuadMesh::face(h);
+        if (g == f || !ok) return;
+        Vec3 q[4];
+        for (Index i = 0; i < 4; ++i) {
+          const Index v = m_.vertex(g, i);
+          q[i] = (v == a || v == c) ? p : m_.position(v);
+        }
+        ok = shape_ok(g, q, p_normal);
+      });
+    }
+    return ok;
+  };
+  if (m_.is_border_vertex(a) || m_.is_border_vertex(c)) {
+    foot = ref_.closest(collapse_position(m_, f, k));  // the border end is on M0 already
+    pos = foot.point;
+    return foot.found() && shape_after(pos, ref_.normal_at(foot));
   }
-  if (!foot.found()) return false;
-  pos = foot.point;
-  const Vec3 foot_n = ref_.normal_at(foot);
-  bool ok = true;
-  for (Index x : {a, c}) {
-    m_.for_each_outgoing(x, [&](Index h) {
-      const Index g = QuadMesh::face(h);
-      if (g == f || !ok) return;
-      Vec3 q[4];
-      for (Index i = 0; i < 4; ++i) {
-        const Index v = m_.vertex(g, i);
-        q[i] = (v == a || v == c) ? pos : m_.position(v);
-      }
-      ok = shape_ok(g, q, foot_n);
-    });
+  // The paper's place: the midpoint projected along the normal. Where that would fold a
+  // neighbour (small faces on curved parts), either end is tried too: both lie on M0,
+  // and without this such faces stay, with their short edges, to the end.
+  foot = ref_.project(collapse_position(m_, f, k), vertex_normal(a) + vertex_normal(c), 2 * norm_of_diagonal(m_, f, k));
+  if (foot.found() && shape_after(foot.point, ref_.normal_at(foot))) {
+    pos = foot.point;
+    return true;
   }
-  return ok;
+  for (Index end : {a, c}) {
+    foot = ref_.closest(m_.position(end));
+    if (foot.found() && shape_after(foot.point, ref_.normal_at(foot))) {
+      pos = foot.point;
+      return true;
+    }
+  }
+  return false;
 }
 
 // [paper 3.3] No face the collapse enlarges may have a radius (largest centre-to-
@@ -454,10 +467,21 @@ SimplifyReport Simplifier::run() {
     if (!m_.is_face_live(e.face) || e.version != version_[e.face]) continue;
     Vec3 pos;
     SurfacePoint foot;
-    if (!can_collapse_diagonal(m_, e.face, e.k) || exceeds_valence(e.face, e.k) || touches_kept_border(e.face, e.k) ||
-        !place(e.face, e.k, pos, foot) ||
-        (opt_.adaptive && !m_fitmap_allows(e.face, e.k, pos))) {
-      ++rep_.refused;  // the face comes back only when something around it changes
+    // A refused face comes back only when something around it changes.
+    if (!can_collapse_diagonal(m_, e.face, e.k) || touches_kept_border(e.face, e.k)) {
+      ++rep_.refused_topology;
+      continue;
+    }
+    if (exceeds_valence(e.face, e.k)) {
+      ++rep_.refused_valence;
+      continue;
+    }
+    if (!place(e.face, e.k, pos, foot)) {
+      ++rep_.refused_geometry;
+      continue;
+    }
+    if (opt_.adaptive && !m_fitmap_allows(e.face, e.k, pos)) {
+      ++rep_.refused_fitmap;
       continue;
     }
     cycle(e.face, e.k, pos, foot);

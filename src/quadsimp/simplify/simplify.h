@@ -47,7 +47,11 @@ struct SimplifyReport {
   Index rotations = 0;
   Index doublets = 0;
   Index singlets = 0;
-  Index refused = 0;     //!< popped candidates refused by a predicate
+  //! Popped candidates refused: by topology (link condition, border pinch, kept border),
+  //! by the valence cap, by geometry (a fold or a convex face turned non-convex), by
+  //! the M-fitmap (adaptive mode).
+  Index refused_topology = 0, refused_valence = 0, refused_geometry = 0, refused_fitmap = 0;
+  Index refused() const { return refused_topology + refused_valence + refused_geometry + refused_fitmap; }
   bool cancelled = false;
   double seconds = 0;
 };
