@@ -34,8 +34,9 @@ PAPER = {
 def run(quadsimp, mesh, faces, samples, extra=()):
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "out.ply")
-        cmd = [quadsimp, "simplify", mesh, out, "--faces", str(faces), "--json", "-q",
-               "--samples", str(samples), *extra]
+        cmd = [quadsimp, "simplify", mesh, out, "--json", "-q", "--samples", str(samples), *extra]
+        if faces:
+            cmd += ["--faces", str(faces)]
         res = subprocess.run(cmd, capture_output=True, text=True)
         if res.returncode != 0:
             raise RuntimeError(f"{' '.join(cmd)} failed: {res.stderr.strip()}")

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/ops/cleaning.h"
@@ -71,6 +72,8 @@ class Simplifier {
   void requeue_region();
   void rebuild_heap();
   double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n) const;
+  double s_weight(Index f) const;
+  double s_lo_ = 0, s_hi_ = std::numeric_limits<double>::infinity();
   void record_foot(Index v, const SurfacePoint& s) { foot_normal_[v] = ref_.normal_at(s); }
 
   QuadMesh& m_;
@@ -92,6 +95,11 @@ double norm_of_diagonal(const QuadMesh& m, Index f, Index k) {
   return (m.position(m.vertex(f, k)) - m.position(m.vertex(f, k + 2))).norm();
 }
 
+double Simplifier::s_weight(Index f) const {
+  const double s = sample_fitmap(opt_.fitmaps->s, m_.face_centroid(f), m_.face_area_normal(f));
+  return std::clamp(s, s_lo_, s_hi_);
+}
+
 double Simplifier::sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n) const {
   const SurfacePoint s = ref_.project(p, n, 4 * mu_);
   return s.found() ? ref_.interpolate(field, s) : 0.0;
@@ -102,13 +110,13 @@ double Simplifier::sample_fitmap(const std::vector<float>& field, const Vec3& p,
 float Simplifier::key(Index f, Index k) const {
   const double d = norm_of_diagonal(m_, f, k);
   if (!opt_.adaptive) return float(d);
-  return float(d * sample_fitmap(opt_.fitmaps->s, m_.face_centroid(f), m_.face_area_normal(f)));
+  return float(d * s_weight(f));
 }
 
 void Simplifier::push_face(Index f) {
   const std::uint32_t v = ++version_[f];
   const double scale =
-      opt_.adaptive ? sample_fitmap(opt_.fitmaps->s, m_.face_centroid(f), m_.face_area_normal(f)) : 1.0;
+      opt_.adaptive ? s_weight(f) : 1.0;
   for (Index k = 0; k < 2; ++k) {
     heap_.push_back({float(norm_of_diagonal(m_, f, k) * scale), f, v, k});
     std::push_heap(heap_.begin(), heap_.end(), LaterFirst{});
@@ -449,6 +457,13 @@ SimplifyReport Simplifier::run() {
   face_mark_.assign(m_.face_capacity(), 0);
   vertex_mark_.assign(m_.vertex_capacity(), 0);
   foot_normal_.assign(m_.vertex_capacity(), Vec3::Zero());
+  if (opt_.adaptive && opt_.s_percentiles > 0) {
+    std::vector<float> sorted = opt_.fitmaps->s;
+    std::sort(sorted.begin(), sorted.end());
+    const double q = opt_.s_percentiles;
+    s_lo_ = sorted[std::size_t(q * (sorted.size() - 1))];
+    s_hi_ = sorted[std::size_t((1 - q) * (sorted.size() - 1))];
+  }
   for (Index v = 0; v < m_.vertex_capacity(); ++v)
     if (m_.is_vertex_live(v)) {
       const SurfacePoint s = ref_.closest(m_.position(v));
