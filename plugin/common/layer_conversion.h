@@ -9,6 +9,8 @@
 
 #include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/mesh/quad_mesh.h"
+#include "quadsimp/simplify/pipeline.h"
+#include "quadsimp/util/errors.h"
 #include "quadsimp/util/progress.h"
 
 namespace qs::plugin {
@@ -71,6 +73,46 @@ void assign_quads(CMesh& m, const QuadMesh& q) {
     t2.ClearAllF();
     t1.SetF(2);  // c2 -> c0
     t2.SetF(0);  // c0 -> c2
+  }
+}
+
+//! Refuses a layer without faces with a message that says what it probably is.
+template <class CMesh>
+void require_faces(const CMesh& m, const std::string& name) {
+  if (m.fn == 0)
+    throw InvalidInput(name + ": the layer has no faces (" + std::to_string(m.vn) +
+                       " vertices: a point cloud?); quadsimp needs a triangle surface");
+}
+
+//! The simplification parameters from either generation's RichParameterList (their
+//! getters share names), checked. \throw std::invalid_argument.
+template <class ParameterList>
+SimplifyParams simplify_params_of(const ParameterList& params) {
+  SimplifyParams p;
+  p.adaptive = params.getBool("Adaptive");
+  p.auto_halt = params.getBool("AutoHalt");
+  p.target_faces = p.adaptive && p.auto_halt ? 0 : Index(std::max(0, params.getInt("TargetFaceNum")));
+  p.tau = params.getFloat("Tau");
+  p.preserve_boundary = params.getBool("PreserveBoundary");
+  p.fast = params.getBool("Fast");
+  if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
+  return p;
+}
+
+//! Fitmaps of the live vertices (in order) into the attributes FitmapS and FitmapM,
+//! and S into the vertex quality. \pre the mesh has per-vertex quality enabled.
+template <class CMesh>
+void store_fitmaps(CMesh& m, const Fitmaps& f) {
+  using Scalar = typename CMesh::ScalarType;
+  auto s = vcg::tri::Allocator<CMesh>::template GetPerVertexAttribute<Scalar>(m, "FitmapS");
+  auto mm = vcg::tri::Allocator<CMesh>::template GetPerVertexAttribute<Scalar>(m, "FitmapM");
+  std::size_t i = 0;
+  for (std::size_t v = 0; v < m.vert.size(); ++v) {
+    if (m.vert[v].IsD()) continue;
+    s[v] = Scalar(f.s[i]);
+    mm[v] = Scalar(f.m[i]);
+    m.vert[v].Q() = Scalar(f.s[i]);
+    ++i;
   }
 }
 

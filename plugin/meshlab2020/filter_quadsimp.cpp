@@ -85,21 +85,12 @@ bool QuadsimpFilterPlugin::run(int id, MeshDocument& md, const RichParameterList
   MeshModel* m = md.mm();
   if (!m) throw qs::InvalidInput("there is no current mesh");
   const std::string name = m->label().toStdString();
-  if (m->cm.fn == 0)
-    throw qs::InvalidInput(name + ": the layer has no faces (" + std::to_string(m->cm.vn) +
-                           " vertices: a point cloud?); quadsimp needs a triangle surface");
+  require_faces(m->cm, name);
   Outcome out;
   switch (id) {
     case kSimplify: {
-      qs::SimplifyParams p;
-      p.adaptive = params.getBool("Adaptive");
-      p.auto_halt = params.getBool("AutoHalt");
-      p.target_faces = p.adaptive && p.auto_halt ? 0 : qs::Index(std::max(0, params.getInt("TargetFaceNum")));
-      p.tau = params.getFloat("Tau");
-      p.preserve_boundary = params.getBool("PreserveBoundary");
-      p.fast = params.getBool("Fast");
-      if (const std::string why = qs::check_params(p); !why.empty()) throw std::invalid_argument(why);
-      const qs::QuadMesh q = run_simplification(mesh_file_of(m->cm), name, p, progress_of(cb), out);
+      const qs::QuadMesh q =
+          run_simplification(mesh_file_of(m->cm), name, simplify_params_of(params), progress_of(cb), out);
       MeshModel* result = md.addNewMesh("", m->label() + " quads", true);
       assign_quads(result->cm, q);
       result->UpdateBoxAndNormals();
@@ -115,16 +106,7 @@ bool QuadsimpFilterPlugin::run(int id, MeshDocument& md, const RichParameterList
     case kFitmaps: {
       const qs::Fitmaps f = run_fitmaps(mesh_file_of(m->cm), name, params.getFloat("Tau"), progress_of(cb), out);
       m->updateDataMask(MeshModel::MM_VERTQUALITY);
-      auto s = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(m->cm, "FitmapS");
-      auto mm = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(m->cm, "FitmapM");
-      std::size_t i = 0;
-      for (std::size_t v = 0; v < m->cm.vert.size(); ++v) {
-        if (m->cm.vert[v].IsD()) continue;
-        s[v] = f.s[i];
-        mm[v] = f.m[i];
-        m->cm.vert[v].Q() = f.s[i];
-        ++i;
-      }
+      store_fitmaps(m->cm, f);
       break;
     }
     case kQuality: {

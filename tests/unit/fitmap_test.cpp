@@ -36,6 +36,32 @@ Index centre_vertex(const TriMesh& t) {
   return best;
 }
 
+// A sphere and, far away, a small triangle that enlarges the bounding box so that the
+// largest fitmap radius exceeds the sphere.
+TriMesh sphere_with_far_triangle(int rings, int segments) {
+  TriMesh t = tri_sphere(rings, segments);
+  TriMesh far;
+  far.positions = {{20, 0, 0}, {20.1, 0, 0}, {20, 0.1, 0}};
+  far.faces = {{0, 1, 2}};
+  append(t, far);
+  clean(t);
+  return t;
+}
+
+// Adaptive simplification of t (fitmaps computed on t).
+SimplifyReport simplify_adaptive(const TriMesh& t, QuadMesh& q, Index target = 0) {
+  const ReferenceSurface ref(t);
+  q = tri_to_quad(t);
+  const Fitmaps f = compute_fitmaps(t);
+  SimplifyOptions opt;
+  opt.adaptive = true;
+  opt.fitmaps = &f;
+  opt.target_faces = target;
+  SimplifyReport r = simplify(q, ref, opt);
+  validate(q);
+  return r;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -83,15 +109,9 @@ TEST(Fitmaps, cylinder_s_is_lower_than_the_sphere) {
 }
 
 TEST(Fitmaps, sphere_m_stops_where_the_cap_passes_tau) {
-  // A unit sphere and, far away, a small triangle that enlarges the bounding box so
-  // that the largest radius exceeds the sphere. Triangles past 90 degrees from p face
-  // against the plane; they reach 5% of the cap at a chord of 1.4507 R.
-  TriMesh t = tri_sphere(60, 90);
-  TriMesh far;
-  far.positions = {{20, 0, 0}, {20.1, 0, 0}, {20, 0.1, 0}};
-  far.faces = {{0, 1, 2}};
-  append(t, far);
-  clean(t);
+  // Triangles past 90 degrees from p face against the plane; they reach 5% of the cap
+  // at a chord of 1.4507 R.
+  const TriMesh t = sphere_with_far_triangle(60, 90);
   const Fitmaps f = compute_fitmaps_unsmoothed(t);
   const auto r = fitmap_radii(t, 8);
   const double chord = 1.4507;
@@ -148,20 +168,8 @@ TEST(Adaptive, m_fitmap_refuses_collapses_that_grow_faces_past_it) {
 }
 
 TEST(Adaptive, auto_halt_terminates) {
-  TriMesh t = tri_sphere(30, 40);
-  TriMesh far;  // enlarges the bounding box so that F_M can stop the sphere
-  far.positions = {{20, 0, 0}, {20.1, 0, 0}, {20, 0.1, 0}};
-  far.faces = {{0, 1, 2}};
-  append(t, far);
-  clean(t);
-  const ReferenceSurface ref(t);
-  QuadMesh q = tri_to_quad(t);
-  const Fitmaps f = compute_fitmaps(t);
-  SimplifyOptions opt;
-  opt.adaptive = true;
-  opt.fitmaps = &f;
-  const SimplifyReport r = simplify(q, ref, opt);  // no target: until nothing is feasible
-  validate(q);
+  QuadMesh q;
+  const SimplifyReport r = simplify_adaptive(sphere_with_far_triangle(30, 40), q);  // until nothing is feasible
   EXPECT_GT(r.collapses, 0u);
   EXPECT_FALSE(r.cancelled);
   EXPECT_LT(q.n_faces(), r.initial_faces);
@@ -171,16 +179,10 @@ TEST(Adaptive, auto_halt_terminates) {
 TEST(Adaptive, faces_are_smaller_around_a_bump) {
   // A flat square with one narrow bump in its middle: F_S is ~0 on the flat part, so
   // it is coarsened first.
-  TriMesh t = height_field(80, 1.0, [](double x, double y) { return 0.15 * std::exp(-(x * x + y * y) / 0.02); });
-  const ReferenceSurface ref(t);
-  QuadMesh q = tri_to_quad(t);
-  const Fitmaps f = compute_fitmaps(t);
-  SimplifyOptions opt;
-  opt.adaptive = true;
-  opt.fitmaps = &f;
-  opt.target_faces = 400;
-  simplify(q, ref, opt);
-  validate(q);
+  const TriMesh t =
+      height_field(80, 1.0, [](double x, double y) { return 0.15 * std::exp(-(x * x + y * y) / 0.02); });
+  QuadMesh q;
+  simplify_adaptive(t, q, 400);
   double near = 0, far = 0;
   int n_near = 0, n_far = 0;
   for (Index fc = 0; fc < q.n_faces(); ++fc) {

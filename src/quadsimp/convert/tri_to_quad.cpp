@@ -10,29 +10,6 @@
 namespace qs {
 namespace {
 
-// Neighbour triangle across edge k of each triangle (edge k runs from corner k to k+1).
-std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& t) {
-  struct Dir {
-    std::uint64_t key;
-    Index corner;  // 3*face + k
-  };
-  std::vector<Dir> d;
-  d.reserve(3 * t.faces.size());
-  for (Index f = 0; f < t.n_faces(); ++f)
-    for (Index k = 0; k < 3; ++k) {
-      const Index a = t.faces[f][k], b = t.faces[f][(k + 1) % 3];
-      d.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), 3 * f + k});
-    }
-  std::sort(d.begin(), d.end(), [](const Dir& x, const Dir& y) { return x.key < y.key || (x.key == y.key && x.corner < y.corner); });
-  std::vector<std::array<Index, 3>> adj(t.faces.size(), {kNone, kNone, kNone});
-  for (std::size_t i = 0; i + 1 < d.size(); ++i)
-    if (d[i].key == d[i + 1].key) {
-      adj[d[i].corner / 3][d[i].corner % 3] = d[i + 1].corner / 3;
-      adj[d[i + 1].corner / 3][d[i + 1].corner % 3] = d[i].corner / 3;
-    }
-  return adj;
-}
-
 // The quad made by triangle f and its neighbour across edge k, counter-clockwise.
 std::array<Index, 4> merged_quad(const TriMesh& t, Index f, Index k, Index g) {
   const Index a = t.faces[f][k], b = t.faces[f][(k + 1) % 3], c = t.faces[f][(k + 2) % 3];

@@ -241,28 +241,6 @@ bool cell_ball(const CellLevel& L, Index start, const Vec3& p, double r, Scratch
   return true;
 }
 
-std::vector<std::array<Index, 3>> triangle_neighbours(const TriMesh& t) {
-  struct Dir {
-    std::uint64_t key;
-    Index corner;
-  };
-  std::vector<Dir> d;
-  d.reserve(3 * t.faces.size());
-  for (Index f = 0; f < t.n_faces(); ++f)
-    for (Index k = 0; k < 3; ++k) {
-      const Index a = t.faces[f][k], b = t.faces[f][(k + 1) % 3];
-      d.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), 3 * f + k});
-    }
-  std::sort(d.begin(), d.end(), [](const Dir& x, const Dir& y) { return x.key < y.key || (x.key == y.key && x.corner < y.corner); });
-  std::vector<std::array<Index, 3>> adj(t.faces.size(), {kNone, kNone, kNone});
-  for (std::size_t i = 0; i + 1 < d.size(); ++i)
-    if (d[i].key == d[i + 1].key) {
-      adj[d[i].corner / 3][d[i].corner % 3] = d[i + 1].corner / 3;
-      adj[d[i + 1].corner / 3][d[i + 1].corner % 3] = d[i].corner / 3;
-    }
-  return adj;
-}
-
 // F_S and F_M from the per-radius errors and fractions of one vertex.
 void summarise(const std::vector<double>& radii, const double* error, const double* frac, const char* ok,
                const FitmapOptions& opt, float& fs, float& fm) {
@@ -327,7 +305,7 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
   std::vector<double> error(std::size_t(nv) * nl, 0), frac(std::size_t(nv) * nl, 0);
   std::vector<char> ok(std::size_t(nv) * nl, 0);
   tbb::enumerable_thread_specific<Scratch> scratch;
-  const auto adj = triangle_neighbours(t);
+  const auto adj = triangle_adjacency(t);
 
   for (Index i = 0; i < nl; ++i) {
     const double r = radii[i];

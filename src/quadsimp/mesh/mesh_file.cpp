@@ -45,21 +45,21 @@ MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array
   return out;
 }
 
+void split_quad(const std::vector<Vec3>& p, const std::array<Index, 4>& q, std::vector<std::array<Index, 3>>& out) {
+  if ((p[q[0]] - p[q[2]]).squaredNorm() <= (p[q[1]] - p[q[3]]).squaredNorm()) {
+    out.push_back({q[0], q[1], q[2]});
+    out.push_back({q[0], q[2], q[3]});
+  } else {
+    out.push_back({q[0], q[1], q[3]});
+    out.push_back({q[1], q[2], q[3]});
+  }
+}
+
 TriMesh triangles_of(const MeshFile& file) {
   TriMesh t;
   t.positions = file.positions;
   t.faces = file.triangles;
-  for (const auto& q : file.quads) {
-    const double d02 = (file.positions[q[0]] - file.positions[q[2]]).squaredNorm();
-    const double d13 = (file.positions[q[1]] - file.positions[q[3]]).squaredNorm();
-    if (d02 <= d13) {
-      t.faces.push_back({q[0], q[1], q[2]});
-      t.faces.push_back({q[0], q[2], q[3]});
-    } else {
-      t.faces.push_back({q[0], q[1], q[3]});
-      t.faces.push_back({q[1], q[2], q[3]});
-    }
-  }
+  for (const auto& q : file.quads) split_quad(file.positions, q, t.faces);
   return t;
 }
 

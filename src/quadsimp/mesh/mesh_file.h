@@ -25,6 +25,10 @@ struct MeshFile {
 MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array<Index, 3>> triangles,
                              const std::vector<std::uint8_t>& faux);
 
+//! Appends the two triangles of quad q split along its shorter diagonal.
+void split_quad(const std::vector<Vec3>& positions, const std::array<Index, 4>& q,
+                std::vector<std::array<Index, 3>>& triangles);
+
 //! The triangles of a mesh: its triangles, or its quads split along their shorter diagonal.
 TriMesh triangles_of(const MeshFile& file);
 

@@ -214,6 +214,29 @@ void split_nonmanifold_vertices(TriMesh& m, CleanReport& r) {
 
 }  // namespace
 
+std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& t) {
+  struct Dir {
+    std::uint64_t key;
+    Index corner;  // 3*face + k
+    bool operator<(const Dir& o) const { return key < o.key || (key == o.key && corner < o.corner); }
+  };
+  std::vector<Dir> d;
+  d.reserve(3 * t.faces.size());
+  for (Index f = 0; f < t.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k) {
+      const Index a = t.faces[f][k], b = t.faces[f][(k + 1) % 3];
+      d.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), 3 * f + k});
+    }
+  std::sort(d.begin(), d.end());
+  std::vector<std::array<Index, 3>> adj(t.faces.size(), {kNone, kNone, kNone});
+  for (std::size_t i = 0; i + 1 < d.size(); ++i)
+    if (d[i].key == d[i + 1].key) {
+      adj[d[i].corner / 3][d[i].corner % 3] = d[i + 1].corner / 3;
+      adj[d[i + 1].corner / 3][d[i + 1].corner % 3] = d[i].corner / 3;
+    }
+  return adj;
+}
+
 double bbox_diagonal(const std::vector<Vec3>& positions) {
   if (positions.empty()) return 0.0;
   Vec3 lo = positions[0], hi = positions[0];

@@ -44,6 +44,10 @@ CleanReport clean(TriMesh& mesh, const std::string& source = "mesh", const LogFn
 //! Length of the diagonal of the axis-aligned bounding box.
 double bbox_diagonal(const std::vector<Vec3>& positions);
 
+//! Neighbour triangle across edge k (corner k to k+1) of each triangle; kNone on the
+//! border. \pre edge-manifold (see clean()).
+std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& mesh);
+
 //! Connected component id per face (faces sharing an edge), and their count.
 Index face_components(const TriMesh& mesh, std::vector<Index>& component);
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/simplify/simplify.h"
 
@@ -79,14 +80,7 @@ TriMesh triangulate(const QuadMesh& m) {
     if (!m.is_face_live(f)) continue;
     auto q = m.face_vertices(f);
     for (Index& v : q) v = id[v];
-    const auto& P = t.positions;
-    if ((P[q[0]] - P[q[2]]).squaredNorm() <= (P[q[1]] - P[q[3]]).squaredNorm()) {
-      t.faces.push_back({q[0], q[1], q[2]});
-      t.faces.push_back({q[0], q[2], q[3]});
-    } else {
-      t.faces.push_back({q[0], q[1], q[3]});
-      t.faces.push_back({q[1], q[2], q[3]});
-    }
+    split_quad(t.positions, q, t.faces);
   }
   return t;
 }

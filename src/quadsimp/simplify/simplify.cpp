@@ -56,6 +56,25 @@ class Simplifier {
            m_.valence(m_.vertex(f, k)) + m_.valence(m_.vertex(f, k + 2)) - 2 > opt_.max_valence;
   }
   bool m_fitmap_allows(Index f, Index k, const Vec3& pos) const;
+  //! Calls test(g, corners) for every face g around diagonal k of f as it would be
+  //! after the collapse (the merged vertex at pos), until one returns false.
+  template <class Test>
+  bool for_each_merged_face(Index f, Index k, const Vec3& pos, Test&& test) const {
+    const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
+    bool ok = true;
+    for (Index x : {a, c})
+      m_.for_each_outgoing(x, [&](Index h) {
+        const Index g = QuadMesh::face(h);
+        if (g == f || !ok) return;
+        Vec3 q[4];
+        for (Index i = 0; i < 4; ++i) {
+          const Index v = m_.vertex(g, i);
+          q[i] = (v == a || v == c) ? pos : m_.position(v);
+        }
+        ok = test(g, q);
+      });
+    return ok;
+  }
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
   void add_faces_around(Index v, std::vector<Index>& faces);
   void rotate_in_region();
@@ -171,20 +190,7 @@ int Simplifier::target_valence_of_border(Index v) const {
 bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
   const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
   auto shape_after = [&](const Vec3& p, const Vec3& p_normal) {
-    bool ok = true;
-    for (Index x : {a, c}) {
-      m_.for_each_outgoing(x, [&](Index h) {
-        const Index g = QuadMesh::face(h);
-        if (g == f || !ok) return;
-        Vec3 q[4];
-        for (Index i = 0; i < 4; ++i) {
-          const Index v = m_.vertex(g, i);
-          q[i] = (v == a || v == c) ? p : m_.position(v);
-        }
-        ok = shape_ok(g, q, p_normal);
-      });
-    }
-    return ok;
+    return for_each_merged_face(f, k, p, [&](Index g, const Vec3* q) { return shape_ok(g, q, p_normal); });
   };
   if (m_.is_border_vertex(a) || m_.is_border_vertex(c)) {
     foot = ref_.closest(collapse_position(m_, f, k));  // the border end is on M0 already
@@ -213,25 +219,13 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
 // corner distance) above F_M at its centre. The faces are those around a and c
 // after the merge, with the survivor at `pos`.
 bool Simplifier::m_fitmap_allows(Index f, Index k, const Vec3& pos) const {
-  const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
-  bool ok = true;
-  for (Index x : {a, c}) {
-    m_.for_each_outgoing(x, [&](Index h) {
-      const Index g = QuadMesh::face(h);
-      if (g == f || !ok) return;
-      Vec3 q[4];
-      for (Index i = 0; i < 4; ++i) {
-        const Index v = m_.vertex(g, i);
-        q[i] = (v == a || v == c) ? pos : m_.position(v);
-      }
-      const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
-      double radius = 0;
-      for (const Vec3& p : q) radius = std::max(radius, (p - centre).norm());
-      const double fm = sample_fitmap(opt_.fitmaps->m, centre, quad_normal(q[0], q[1], q[2], q[3]));
-      if (radius * opt_.m_factor > fm) ok = false;
-    });
-  }
-  return ok;
+  return for_each_merged_face(f, k, pos, [&](Index, const Vec3* q) {
+    const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    double radius = 0;
+    for (int i = 0; i < 4; ++i) radius = std::max(radius, (q[i] - centre).norm());
+    const double fm = sample_fitmap(opt_.fitmaps->m, centre, quad_normal(q[0], q[1], q[2], q[3]));
+    return radius * opt_.m_factor <= fm;
+  });
 }
 
 void Simplifier::add_faces_around(Index v, std::vector<Index>& faces) {
