@@ -78,6 +78,15 @@ set -e
 if [ "$code" -gt 128 ] && [ "$code" -lt 192 ]; then fail "meshlabserver crashed on a point cloud (exit $code)"; fi
 grep -q "point cloud" "$work/cloud.log" || { fail "no clear message for a point cloud"; cat "$work/cloud.log"; }
 
+# A non-manifold mesh (three triangles on one edge): refused with the reason.
+printf 'ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n' >"$work/fin.ply"
+set +e
+ml_run meshlabserver -i "$work/fin.ply" -o "$work/fin_out.ply" -s "$script" >"$work/fin.log" 2>&1
+code=$?
+set -e
+if [ "$code" -gt 128 ] && [ "$code" -lt 192 ]; then fail "meshlabserver crashed on a non-manifold mesh (exit $code)"; fi
+grep -q "non-manifold edge" "$work/fin.log" || { fail "no clear message for a non-manifold mesh"; cat "$work/fin.log"; }
+
 # 5. The other three filters, chained on the torus: convert (in place), fitmaps, quality.
 cat >"$work/others.mlx" <<'MLX'
 <!DOCTYPE FilterScript>

@@ -128,6 +128,20 @@ def test_quality_values_and_distance_agree_with_meshlab(bunny_path):
         assert abs(value - theirs) <= 0.1 * theirs, (key, value, theirs)
 
 
+def test_quality_on_a_generated_open_mesh():
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(open_grid(), "grid")
+    ms.meshing_quad_mesh_simplification(targetfacenum=500)
+    q = ms.get_quad_mesh_quality_measures(referencemesh=0, samplenum=50000)
+    assert q["faces"] == 500 and q["nonconvex_faces"] == 0
+    assert q["rms_e3"] < 5 and q["projectability"] > 0.99
+    # A triangle layer is refused: the quality filter measures quads only.
+    with pytest.raises(pymeshlab.PyMeshLabException) as e:
+        ms.set_current_mesh(0)
+        ms.get_quad_mesh_quality_measures(referencemesh=0)
+    assert "not a pure quad mesh" in str(e.value)
+
+
 def test_bad_input_raises_a_python_exception():
     ms = pymeshlab.MeshSet()
     cloud = pymeshlab.Mesh(vertex_matrix=np.random.default_rng(1).random((50, 3)))
