@@ -249,19 +249,29 @@ bool Simplifier::try_rotate(Index h) {
   const Index u = m_.from(h), w = m_.to(h);
   const Index x1 = m_.to(QuadMesh::next(h)), x2 = m_.from(QuadMesh::prev(h));
   const Index y1 = m_.to(QuadMesh::next(g)), y2 = m_.from(QuadMesh::prev(g));
-  auto dev = [&](Index v, int delta) { return std::abs(m_.valence(v) + delta - target_valence(v)); };
-  const int base = dev(x2, 0) + dev(y2, 0) + dev(x1, 0) + dev(y1, 0);
-  const int keep = dev(u, 0) + dev(w, 0) + base;
-  const int lose = dev(u, -1) + dev(w, -1);
-  const int e_a = lose + dev(x1, 1) + dev(y1, 1) + dev(x2, 0) + dev(y2, 0);
-  const int e_b = lose + dev(x2, 1) + dev(y2, 1) + dev(x1, 0) + dev(y1, 0);
+  // Energy [paper]: sum over the hexagon of |D(v) - target|. Ties are broken by the sum
+  // of squares (ours): a 6-4 pair becoming 5-5 keeps the paper's energy but lowers the
+  // maximum valence. The pair decreases lexicographically with every rotation, so the
+  // rotations still terminate.
+  const Index corner[6] = {u, w, x1, y1, x2, y2};
+  int dev[6];
+  for (int i = 0; i < 6; ++i) dev[i] = m_.valence(corner[i]) - target_valence(corner[i]);
+  auto energy = [&](int gain_a, int gain_b) {  // gain_a on x1, y1; gain_b on x2, y2
+    const int d[6] = {dev[0] - 1, dev[1] - 1, dev[2] + gain_a, dev[3] + gain_a, dev[4] + gain_b, dev[5] + gain_b};
+    std::pair<int, int> e{0, 0};
+    for (int x : d) e.first += std::abs(x), e.second += x * x;
+    return e;
+  };
+  std::pair<int, int> keep{0, 0};
+  for (int x : dev) keep.first += std::abs(x), keep.second += x * x;
+  const auto e_a = energy(1, 0), e_b = energy(0, 1);
   if (std::min(e_a, e_b) >= keep) return false;
   // Prefer the lower energy; on a tie the shorter new edge.
   Rotation first = Rotation::Ccw, second = Rotation::Cw;
   const double la = (m_.position(x1) - m_.position(y1)).squaredNorm();
   const double lb = (m_.position(x2) - m_.position(y2)).squaredNorm();
   if (e_b < e_a || (e_b == e_a && lb < la)) std::swap(first, second);
-  const int e_second = second == Rotation::Ccw ? e_a : e_b;
+  const auto e_second = second == Rotation::Ccw ? e_a : e_b;
   for (Rotation r : {first, second}) {
     if (r == second && e_second >= keep) break;
     if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r) || !rotation_follows_reference(h, r)) continue;
