@@ -45,7 +45,7 @@ class Simplifier {
   SimplifyReport run();
 
  private:
-  float key(Index f, Index k) const;
+  void append_entries(Index f);
   void push_face(Index f);
   bool place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
   bool touches_kept_border(Index f, Index k) const {
@@ -125,21 +125,18 @@ double Simplifier::sample_fitmap(const std::vector<float>& field, const Vec3& p,
 }
 
 // [paper 3.3] Priority |d| * F_S(phi(c)), c the face centre and phi the projection
-// onto M0 along the face normal; uniform mode: |d|.
-float Simplifier::key(Index f, Index k) const {
-  const double d = norm_of_diagonal(m_, f, k);
-  if (!opt_.adaptive) return float(d);
-  return float(d * s_weight(f));
+// onto M0 along the face normal; uniform mode: |d|. Appends both diagonals of f with
+// the face's current version.
+void Simplifier::append_entries(Index f) {
+  const double scale = opt_.adaptive ? s_weight(f) : 1.0;
+  for (Index k = 0; k < 2; ++k) heap_.push_back({float(norm_of_diagonal(m_, f, k) * scale), f, version_[f], k});
 }
 
 void Simplifier::push_face(Index f) {
-  const std::uint32_t v = ++version_[f];
-  const double scale =
-      opt_.adaptive ? s_weight(f) : 1.0;
-  for (Index k = 0; k < 2; ++k) {
-    heap_.push_back({float(norm_of_diagonal(m_, f, k) * scale), f, v, k});
-    std::push_heap(heap_.begin(), heap_.end(), LaterFirst{});
-  }
+  ++version_[f];
+  append_entries(f);
+  std::push_heap(heap_.begin(), heap_.end() - 1, LaterFirst{});
+  std::push_heap(heap_.begin(), heap_.end(), LaterFirst{});
 }
 
 void Simplifier::rebuild_heap() {
@@ -147,7 +144,7 @@ void Simplifier::rebuild_heap() {
   for (Index f = 0; f < m_.face_capacity(); ++f)
     if (m_.is_face_live(f)) {
       ++version_[f];
-      for (Index k = 0; k < 2; ++k) heap_.push_back({key(f, k), f, version_[f], k});
+      append_entries(f);
     }
   std::make_heap(heap_.begin(), heap_.end(), LaterFirst{});
 }
