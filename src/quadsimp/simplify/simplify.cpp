@@ -92,7 +92,6 @@ class Simplifier {
   void rebuild_heap();
   double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n) const;
   double s_weight(Index f) const;
-  double s_lo_ = 0, s_hi_ = std::numeric_limits<double>::infinity();
   void record_foot(Index v, const SurfacePoint& s) { foot_normal_[v] = ref_.normal_at(s); }
 
   QuadMesh& m_;
@@ -104,7 +103,8 @@ class Simplifier {
   // Reference normal under each vertex (at its last projection): faces are checked
   // against these, so that no sequence of small turns can flip a face.
   std::vector<Vec3> foot_normal_;
-
+  // Adaptive mode: the F_S range the priority is clamped to.
+  double s_lo_ = 0, s_hi_ = std::numeric_limits<double>::infinity();
   std::uint32_t stamp_ = 0;
   std::vector<Entry> heap_;
   std::vector<Index> region_faces_, region_verts_, work_, cand_;
@@ -509,7 +509,9 @@ SimplifyReport Simplifier::run() {
     }
     if (heap_.size() > 16 * std::size_t(m_.n_faces()) + 1024) rebuild_heap();
     if (opt_.progress && rep_.collapses % 256 == 0) {
-      const float done = target ? float(rep_.initial_faces - m_.n_faces()) / float(span) : 0.f;
+      // Without a target (automatic halting) the end is unknown: report the share of
+      // faces removed, which only grows.
+      const float done = float(rep_.initial_faces - m_.n_faces()) / float(target ? span : rep_.initial_faces);
       if (!opt_.progress(std::min(done, 1.f), "simplify")) {
         rep_.cancelled = true;
         break;
