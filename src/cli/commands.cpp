@@ -133,9 +133,9 @@ int run_simplify(const SimplifyArgs& a) {
         std::string j = to_json(full, &d);
         char extra[256];
         std::snprintf(extra, sizeof extra,
-                      ", \"seconds\": %.4f, \"collapses\": %u, \"rotations\": %u, \"input_faces\": %u, "
+                      ", \"seconds\": %.4f, \"collapses\": %u, \"border_collapses\": %u, \"rotations\": %u, \"input_faces\": %u, "
                       "\"refused\": {\"topology\": %u, \"valence\": %u, \"geometry\": %u, \"fitmap\": %u}}",
-                      s, r.collapses, r.rotations, r.initial_faces, r.refused_topology, r.refused_valence,
+                      s, r.collapses, r.border_collapses, r.rotations, r.initial_faces, r.refused_topology, r.refused_valence,
                       r.refused_geometry, r.refused_fitmap);
         j.pop_back();
         std::printf("%s%s\n", j.c_str(), extra);

@@ -7,6 +7,7 @@
 
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/tri_to_quad.h"
+#include "quadsimp/ops/border_ear.h"
 #include "quadsimp/ops/cleaning.h"
 #include "quadsimp/ops/diagonal_collapse.h"
 #include "quadsimp/ops/doublet.h"
@@ -270,6 +271,45 @@ TEST(Singlet, face_with_two_edges_between_p_and_x_is_removed) {
   EXPECT_FALSE(is_singlet(m, p));
 }
 
+TEST(BorderEar, grid_corner_collapses) {
+  // Corner 0 of the 3x3 grid has one face (0, 1, 5, 4): an ear. 4 and 1 merge.
+  QuadMesh m = quad_grid(3, 3);
+  const Index f = face_with_corners(m, {0, 1, 5, 4});
+  const Index k = corner_of(m, f, 0);
+  int border_before = 0;
+  for (Index h = 0; h < m.halfedge_capacity(); ++h) border_before += m.is_border_halfedge(h);
+  ASSERT_TRUE(can_collapse_border_ear(m, f, k));
+  const Index v = collapse_border_ear(m, f, k, m.position(0));
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 8u);
+  EXPECT_EQ(m.n_vertices(), 14u);
+  EXPECT_TRUE(m.is_border_vertex(v));
+  EXPECT_EQ(m.valence(v), 3 + 3 - 3);
+  EXPECT_EQ(m.valence(5), 3);
+  int border_after = 0;
+  for (Index h = 0; h < m.halfedge_capacity(); ++h)
+    border_after += m.is_face_live(QuadMesh::face(h)) && m.is_border_halfedge(h);
+  EXPECT_EQ(border_after, border_before - 2);
+  EXPECT_TRUE(m.position(v).isApprox(Vec3(0, 0, 0)));
+}
+
+TEST(BorderEar, refusals) {
+  QuadMesh one = single_quad();  // a-d is a border edge too
+  for (Index k = 0; k < 4; ++k) EXPECT_FALSE(can_collapse_border_ear(one, 0, k));
+  QuadMesh g = quad_grid(3, 3);
+  const Index f = face_with_corners(g, {0, 1, 5, 4});
+  EXPECT_FALSE(can_collapse_border_ear(g, f, corner_of(g, f, 1)));  // 1 has two faces
+  EXPECT_FALSE(can_collapse_border_ear(g, f, corner_of(g, f, 5)));  // interior vertex
+  const Index centre = face_with_corners(g, {5, 6, 10, 9});
+  for (Index k = 0; k < 4; ++k) EXPECT_FALSE(can_collapse_border_ear(g, centre, k));
+  // A strip of two quads: the loop (6 edges) would close onto a pinch.
+  QuadMesh strip = quad_grid(2, 1);
+  for (Index ff = 0; ff < 2; ++ff)
+    for (Index k = 0; k < 4; ++k) EXPECT_FALSE(can_collapse_border_ear(strip, ff, k));
+  g.kill_face(f);
+  EXPECT_FALSE(can_collapse_border_ear(g, f, 0));
+}
+
 TEST(Operators, random_sequences_keep_every_invariant) {
   std::vector<QuadMesh> meshes;
   for (TriMesh t : {tri_sphere(10, 14), tri_torus(16, 10), tri_grid(9, 8, 0.3), two_spheres()}) {
@@ -279,6 +319,7 @@ TEST(Operators, random_sequences_keep_every_invariant) {
   meshes.push_back(quad_grid(6, 5));
   meshes.push_back(grid_with_hole(7));
   std::mt19937 rng(7);
+  int ears = 0;
   for (QuadMesh& m : meshes) {
     CleanCounts counts = clean_all(m);
     (void)counts;
@@ -287,7 +328,12 @@ TEST(Operators, random_sequences_keep_every_invariant) {
     for (int step = 0; step < 400; ++step) {
       const Index f = std::uniform_int_distribution<Index>(0, m.face_capacity() - 1)(rng);
       if (!m.is_face_live(f)) continue;
-      if (step % 2 == 0) {
+      if (step % 5 == 4) {
+        const Index k = step % 4;
+        if (!can_collapse_border_ear(m, f, k)) continue;
+        collapse_border_ear(m, f, k, m.position(m.vertex(f, k)));
+        ++ears;
+      } else if (step % 2 == 0) {
         const Index k = step % 4 == 0 ? 0 : 1;
         if (!can_collapse_diagonal(m, f, k)) continue;
         const Index v = collapse_diagonal(m, f, k, collapse_position(m, f, k));
@@ -308,4 +354,5 @@ TEST(Operators, random_sequences_keep_every_invariant) {
     m.compact();
     validate(m);
   }
+  EXPECT_GT(ears, 0) << "no border ear was exercised";
 }

@@ -8,9 +8,11 @@
 #include <limits>
 
 #include "quadsimp/mesh/quad_geometry.h"
+#include "quadsimp/ops/border_ear.h"
 #include "quadsimp/ops/cleaning.h"
 #include "quadsimp/ops/diagonal_collapse.h"
 #include "quadsimp/ops/edge_rotation.h"
+#include "quadsimp/ops/local_rewrite.h"
 #include "quadsimp/util/errors.h"
 
 namespace qs {
@@ -76,6 +78,9 @@ class Simplifier {
     return ok;
   }
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
+  void coarsen_border();
+  bool remove_border_vertex(Index b);
+  void after_change(const std::vector<Index>& touched);
   void add_faces_around(Index v, std::vector<Index>& faces);
   void rotate_in_region();
   bool try_rotate(Index h);
@@ -422,15 +427,79 @@ void Simplifier::cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& fo
   const Index v = collapse_diagonal(m_, f, k, pos);
   record_foot(v, foot);
   ++rep_.collapses;
+  after_change({v, b, d});
+}
+
+// Border coarsening (ours; see ops/border_ear.h). A border vertex b whose two border
+// edges are short next to mu is removed: the interior edge at b is rotated so that b's
+// only face is an ear, then the ear collapses with the merged vertex at b (on M0's
+// border). Nothing happens unless both steps pass their checks; a rotation whose ear
+// is refused is undone.
+void Simplifier::coarsen_border() {
+  thread_local std::vector<Index> candidates;
+  candidates.clear();
+  for (Index v = 0; v < m_.vertex_capacity(); ++v)
+    if (m_.is_vertex_live(v) && m_.is_border_vertex(v)) candidates.push_back(v);
+  for (Index b : candidates)
+    if (m_.is_vertex_live(b) && m_.is_border_vertex(b)) remove_border_vertex(b);
+}
+
+bool Simplifier::remove_border_vertex(Index b) {
+  const Index out = m_.out(b);  // b -> c, border
+  Index ha = out;               // a -> b, border (the prev of b's last outgoing face half-edge)
+  m_.for_each_outgoing(b, [&](Index h) { ha = QuadMesh::prev(h); });
+  const Index a = m_.from(ha), c = m_.to(out);
+  const double ab = (m_.position(a) - m_.position(b)).norm(), bc = (m_.position(b) - m_.position(c)).norm();
+  const int valence = m_.valence(b);
+  if (ab + bc >= mu_ || valence > 3) return false;
+  // The ear is f with b at corner k, once b has a single face.
+  auto try_ear = [&](Index ear, Index k) {
+    const Vec3 p = m_.position(b);
+    const SurfacePoint foot = ref_.closest(p);
+    if (!can_collapse_border_ear(m_, ear, k) || !foot.found() ||
+        !for_each_merged_face(ear, (k + 1) & 3u, p,
+                              [&](Index g, const Vec3* q) { return shape_ok(g, q, ref_.normal_at(foot)); }))
+      return false;
+    const Index d = m_.vertex(ear, k + 2);
+    const Index v = collapse_border_ear(m_, ear, k, p);
+    record_foot(v, foot);
+    ++rep_.border_collapses;
+    after_change({v, d});
+    return true;
+  };
+  if (valence == 2) return try_ear(QuadMesh::face(out), QuadMesh::corner(out));
+  // Valence 3: rotate the interior edge b -> e away first, so that b keeps one face.
+  const Index h = QuadMesh::next(ha);
+  if (m_.twin(h) == kNone) return false;
+  const Index g = m_.twin(h), f1 = QuadMesh::face(h), f2 = QuadMesh::face(g);
+  const std::array<std::array<Index, 4>, 2> before = {m_.face_vertices(f1), m_.face_vertices(f2)};
+  const std::array<Index, 6> outer = {m_.twin(QuadMesh::next(h)), m_.twin(QuadMesh::opposite_in_face(h)),
+                                      m_.twin(QuadMesh::prev(h)),  m_.twin(QuadMesh::next(g)),
+                                      m_.twin(QuadMesh::opposite_in_face(g)), m_.twin(QuadMesh::prev(g))};
+  for (Rotation r : {Rotation::Ccw, Rotation::Cw}) {
+    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r) || !rotation_follows_reference(h, r)) continue;
+    rotate_edge(m_, h, r);
+    Index ear = kNone, k = 0;
+    for (Index f : {f1, f2})
+      for (Index i = 0; i < 4; ++i)
+        if (m_.vertex(f, i) == b) ear = f, k = i;
+    if (ear != kNone && try_ear(ear, k)) return true;
+    const Index faces[2] = {f1, f2};
+    detail::rewrite_faces(m_, faces, before.data(), 2, outer.data(), 6);  // undo the rotation
+  }
+  return false;
+}
+
+// Cleaning, rotations, smoothing and requeueing around vertices an operation changed.
+void Simplifier::after_change(const std::vector<Index>& touched) {
   region_faces_.clear();
-  work_.assign({v, b, d});
+  work_.assign(touched.begin(), touched.end());
   CleanCounts cc;
   clean_from(m_, work_, cc, &region_faces_);
   rep_.doublets += cc.doublets;
   rep_.singlets += cc.singlets;
-  for (Index x : {v, b, d}) add_faces_around(x, region_faces_);
+  for (Index x : touched) add_faces_around(x, region_faces_);
   if (opt_.rotations) rotate_in_region();
-  // Faces that rotations or cleaning touched may have died since; smooth the rest.
   smooth_region();
   for (int pass = 1; pass < opt_.passes; ++pass) {
     // Smoothing moved the zone: rotations the fold and convexity checks refused may
@@ -501,6 +570,7 @@ SimplifyReport Simplifier::run() {
       continue;
     }
     cycle(e.face, e.k, pos, foot);
+    if (opt_.coarsen_border && !opt_.preserve_boundary && rep_.collapses % 64 == 0) coarsen_border();
     if (rep_.collapses >= next_mu) {
       // mu drifts slowly: an exact recount every ~2% of the faces (mu moves ~1%) is cheaper than
       // tracking every edge each operation touches, and as accurate.

@@ -37,6 +37,9 @@ struct SimplifyOptions {
   //! Keep the border exactly: no collapse touches a border vertex and smoothing does
   //! not move them (border vertices otherwise slide along the border).
   bool preserve_boundary = false;
+  //! Remove border vertices whose border edges are short next to the mean edge (border
+  //! ear collapses, ours): without it holes keep all their input edges.
+  bool coarsen_border = true;
   //! Rotation + smoothing passes after each collapse. The paper does one; a second
   //! one over the smoothed zone gives more regular meshes for about twice the time.
   int passes = 2;
@@ -50,6 +53,7 @@ struct SimplifyReport {
   Index initial_faces = 0;
   Index faces = 0;
   Index collapses = 0;
+  Index border_collapses = 0;  //!< border ear collapses (coarsen_border)
   Index rotations = 0;
   Index doublets = 0;
   Index singlets = 0;
