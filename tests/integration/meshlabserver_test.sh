@@ -68,24 +68,23 @@ for k in ("homeometry_min", "homeometry_max", "mean_edge", "hausdorff_e3", "rms_
 print("ok: plugin and CLI agree:", {k: a[k] for k in ("faces", "regular_percent", "rms_e3")})
 PY
 
-# 4. A point cloud: the filter refuses with our message; MeshLab does not crash.
-printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n' >"$work/cloud.ply"
-set +e
-ml_run meshlabserver -i "$work/cloud.ply" -o "$work/cloud_out.ply" -s "$script" >"$work/cloud.log" 2>&1
-code=$?
-set -e
-# A signal shows as 128+n; meshlabserver's own error exit is 255.
-if [ "$code" -gt 128 ] && [ "$code" -lt 192 ]; then fail "meshlabserver crashed on a point cloud (exit $code)"; fi
-grep -q "point cloud" "$work/cloud.log" || { fail "no clear message for a point cloud"; cat "$work/cloud.log"; }
-
-# A non-manifold mesh (three triangles on one edge): refused with the reason.
-printf 'ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n' >"$work/fin.ply"
-set +e
-ml_run meshlabserver -i "$work/fin.ply" -o "$work/fin_out.ply" -s "$script" >"$work/fin.log" 2>&1
-code=$?
-set -e
-if [ "$code" -gt 128 ] && [ "$code" -lt 192 ]; then fail "meshlabserver crashed on a non-manifold mesh (exit $code)"; fi
-grep -q "non-manifold edge" "$work/fin.log" || { fail "no clear message for a non-manifold mesh"; cat "$work/fin.log"; }
+# 4. Bad input: the filter refuses with our message, and MeshLab does not crash.
+expect_refusal() {  # name message (the input is $work/NAME.ply)
+  local name=$1 message=$2 code
+  set +e
+  ml_run meshlabserver -i "$work/$name.ply" -o "$work/${name}_out.ply" -s "$script" >"$work/$name.log" 2>&1
+  code=$?
+  set -e
+  # A signal shows as 128+n; meshlabserver's own error exit is 255.
+  if [ "$code" -gt 128 ] && [ "$code" -lt 192 ]; then fail "meshlabserver crashed on $name (exit $code)"; fi
+  grep -q "$message" "$work/$name.log" || { fail "no clear message for $name"; cat "$work/$name.log"; }
+}
+vertices='ply\nformat ascii 1.0\nelement vertex %s\nproperty float x\nproperty float y\nproperty float z\n'
+printf "${vertices}end_header\n0 0 0\n1 0 0\n0 1 0\n" 3 >"$work/cloud.ply"
+expect_refusal cloud "point cloud"
+# Three triangles on one edge.
+printf "${vertices}element face 3\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n" 5 >"$work/fin.ply"
+expect_refusal fin "non-manifold edge"
 
 # 5. The other three filters, chained on the torus: convert (in place), fitmaps, quality.
 cat >"$work/others.mlx" <<'MLX'

@@ -74,13 +74,17 @@ def test_adaptive_with_automatic_halting():
     assert 0 < len(out.polygonal_face_list()) < 40 * 40
 
 
+def meshsets(bunny_path):
+    """A MeshSet with a generated open grid, then one with the bunny."""
+    grid = pymeshlab.MeshSet()
+    grid.add_mesh(open_grid(), "grid")
+    bunny = pymeshlab.MeshSet()
+    bunny.load_new_mesh(bunny_path)
+    return grid, bunny
+
+
 def test_conversion(bunny_path):
-    for mesh in (open_grid(), None):
-        ms = pymeshlab.MeshSet()
-        if mesh is None:
-            ms.load_new_mesh(bunny_path)
-        else:
-            ms.add_mesh(mesh, "grid")
+    for ms in meshsets(bunny_path):
         triangles = ms.current_mesh().face_number()
         ms.meshing_tri_to_pure_quad()
         out = ms.current_mesh()
@@ -89,12 +93,7 @@ def test_conversion(bunny_path):
 
 
 def test_fitmaps_on_the_bunny_and_a_grid(bunny_path):
-    for mesh in (open_grid(), None):
-        ms = pymeshlab.MeshSet()
-        if mesh is None:
-            ms.load_new_mesh(bunny_path)
-        else:
-            ms.add_mesh(mesh, "grid")
+    for ms in meshsets(bunny_path):
         ms.compute_scalar_by_fitmap_per_vertex(tau=0.05)
         m = ms.current_mesh()
         s = m.vertex_scalar_array()

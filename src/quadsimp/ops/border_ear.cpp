@@ -28,22 +28,9 @@ bool can_collapse_border_ear(const QuadMesh& m, Index f, Index k) {
   if (m.twin(ha) != kNone || m.twin(hb) != kNone) return false;  // b's only face is f
   if (m.twin(hc) == kNone || m.twin(hd) == kNone) return false;
   const Index a = m.from(ha), b = m.from(hb), c = m.from(hc), d = m.from(hd);
-  (void)b;
   const Index x = border_prev(m, a), y = border_next(m, c);
   if (x == c || y == a || x == y) return false;  // the loop would shrink below three edges
-  thread_local std::vector<Index> na, nc;
-  detail::face_neighbours(m, a, na);
-  detail::face_neighbours(m, c, nc);
-  std::size_t common = 0;
-  for (std::size_t i = 0, j = 0; i < na.size() && j < nc.size();) {
-    if (na[i] < nc[j]) ++i;
-    else if (nc[j] < na[i]) ++j;
-    else {
-      if (na[i] != b && na[i] != d) return false;
-      ++common, ++i, ++j;
-    }
-  }
-  return common == 2;
+  return detail::link_condition(m, a, c, b, d);
 }
 
 Index collapse_border_ear(QuadMesh& m, Index f, Index k, const Vec3& p) {

@@ -15,20 +15,7 @@ bool can_collapse_diagonal(const QuadMesh& m, Index f, Index k) {
   if (m.is_border_vertex(a) && m.is_border_vertex(c)) return false;
   for (Index x : {b, d})
     if (!m.is_border_vertex(x) && m.valence(x) <= 2) return false;
-  // Link condition for quads: the face neighbourhoods of a and c meet only in b, d.
-  thread_local std::vector<Index> na, nc;
-  detail::face_neighbours(m, a, na);
-  detail::face_neighbours(m, c, nc);
-  std::size_t common = 0;
-  for (std::size_t i = 0, j = 0; i < na.size() && j < nc.size();) {
-    if (na[i] < nc[j]) ++i;
-    else if (nc[j] < na[i]) ++j;
-    else {
-      if (na[i] != b && na[i] != d) return false;
-      ++common, ++i, ++j;
-    }
-  }
-  return common == 2;
+  return detail::link_condition(m, a, c, b, d);
 }
 
 Vec3 collapse_position(const QuadMesh& m, Index f, Index k) {

@@ -48,4 +48,22 @@ void face_neighbours(const QuadMesh& m, Index v, std::vector<Index>& out) {
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
+bool link_condition(const QuadMesh& m, Index a, Index c, Index b, Index d) {
+  thread_local std::vector<Index> na, nc;
+  face_neighbours(m, a, na);
+  face_neighbours(m, c, nc);
+  std::size_t common = 0;
+  for (std::size_t i = 0, j = 0; i < na.size() && j < nc.size();) {
+    if (na[i] < nc[j]) {
+      ++i;
+    } else if (nc[j] < na[i]) {
+      ++j;
+    } else {
+      if (na[i] != b && na[i] != d) return false;
+      ++common, ++i, ++j;
+    }
+  }
+  return common == 2;
+}
+
 }  // namespace qs::detail

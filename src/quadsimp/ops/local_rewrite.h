@@ -18,4 +18,8 @@ void rewrite_faces(QuadMesh& m, const Index* faces, const std::array<Index, 4>* 
 //! Vertices that share a face with v (v excluded), sorted, into `out`.
 void face_neighbours(const QuadMesh& m, Index v, std::vector<Index>& out);
 
+//! Quad link condition for merging a and c: the vertices sharing a face with a and
+//! those sharing a face with c are exactly {b, d} in common.
+bool link_condition(const QuadMesh& m, Index a, Index c, Index b, Index d);
+
 }  // namespace qs::detail
