@@ -32,14 +32,21 @@ struct TTypes : vcg::UsedTypes<vcg::Use<TVertex>::AsVertexType, vcg::Use<TFace>:
 class TVertex : public vcg::Vertex<TTypes, vcg::vertex::Coord3d, vcg::vertex::Color4b,
                                    vcg::vertex::BitFlags> {};
 class TFace : public vcg::Face<TTypes, vcg::face::VertexRef, vcg::face::BitFlags> {};
-class TMesh : public vcg::tri::TriMesh<std::vector<TVertex>, std::vector<TFace>> {};
+// vcglib's mesh destructor leaves attributes (the importers add some) allocated.
+class TMesh : public vcg::tri::TriMesh<std::vector<TVertex>, std::vector<TFace>> {
+ public:
+  ~TMesh() override { ClearAttributes(); }
+};
 
 class PVertex;
 class PFace;
 struct PTypes : vcg::UsedTypes<vcg::Use<PVertex>::AsVertexType, vcg::Use<PFace>::AsFaceType> {};
 class PVertex : public vcg::Vertex<PTypes, vcg::vertex::Coord3d, vcg::vertex::BitFlags> {};
 class PFace : public vcg::Face<PTypes, vcg::face::PolyInfo, vcg::face::PFVAdj, vcg::face::BitFlags> {};
-class PMesh : public vcg::tri::TriMesh<std::vector<PVertex>, std::vector<PFace>> {};
+class PMesh : public vcg::tri::TriMesh<std::vector<PVertex>, std::vector<PFace>> {
+ public:
+  ~PMesh() override { ClearAttributes(); }
+};
 
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
   throw InvalidInput(path + ": " + why);
