@@ -53,9 +53,12 @@ class Cli : public ::testing::Test {
 
 TEST_F(Cli, help_for_every_subcommand) {
   EXPECT_EQ(run("--help").code, 0);
-  const CliRun r = run("convert --help");
-  EXPECT_EQ(r.code, 0);
-  EXPECT_NE(r.out.find("OUT"), std::string::npos);
+  for (const char* command : {"convert", "simplify", "fitmap", "stats"}) {
+    const CliRun r = run(std::string(command) + " --help");
+    EXPECT_EQ(r.code, 0) << command;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << command << ": " << r.out;
+  }
+  EXPECT_NE(run("simplify --help").out.find("--adaptive"), std::string::npos);
 }
 
 TEST_F(Cli, convert_writes_quads) {
@@ -82,6 +85,27 @@ TEST_F(Cli, bad_arguments_exit_2) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.out.find("over the input"), std::string::npos);
   EXPECT_EQ(fs::file_size(input_), before);
+}
+
+TEST_F(Cli, simplify_stats_and_fitmap) {
+  const std::string out = p("s.ply");
+  CliRun r = run("simplify " + input_ + " " + out + " --faces 60 --stats --samples 2000");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("60 faces"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Hausdorff"), std::string::npos);
+  r = run("stats " + input_ + " " + out + " --json --samples 2000");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\"faces\": 60"), std::string::npos) << r.out;
+  r = run("stats " + input_ + " " + input_);  // triangles: not a quad mesh
+  EXPECT_EQ(r.code, 1);
+  r = run("fitmap " + input_ + " " + p("f.ply") + " -q");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(p("f.ply")));
+  // Parameter combinations that make no sense are bad arguments.
+  EXPECT_EQ(run("simplify " + input_ + " " + out + " --auto-halt").code, 2);
+  EXPECT_EQ(run("simplify " + input_ + " " + out).code, 2);
+  EXPECT_EQ(run("simplify " + input_ + " " + out + " --adaptive --auto-halt --faces 10").code, 2);
+  EXPECT_EQ(run("simplify " + input_ + " " + out + " --adaptive --auto-halt -q").code, 0);
 }
 
 TEST_F(Cli, bad_input_exits_1_and_writes_nothing) {
