@@ -3,9 +3,7 @@
 
 #include <exception>
 
-#include "filter_runner.h"
-#include "filter_specs.h"
-#include "layer_conversion.h"
+#include "apply_filter.h"
 #include "quadsimp/util/errors.h"
 
 using namespace qs::plugin;
@@ -82,42 +80,9 @@ bool QuadsimpFilterPlugin::applyFilter(QAction* a, MeshDocument& md, const RichP
 }
 
 bool QuadsimpFilterPlugin::run(int id, MeshDocument& md, const RichParameterList& params, vcg::CallBackPos* cb) {
-  MeshModel* m = md.mm();
-  if (!m) throw qs::InvalidInput("there is no current mesh");
-  const std::string name = m->label().toStdString();
-  require_faces(m->cm, name);
-  Outcome out;
-  switch (id) {
-    case kSimplify: {
-      const qs::QuadMesh q =
-          run_simplification(mesh_file_of(m->cm), name, simplify_params_of(params), progress_of(cb), out);
-      MeshModel* result = md.addNewMesh("", m->label() + " quads", true);
-      assign_quads(result->cm, q);
-      result->UpdateBoxAndNormals();
-      break;
-    }
-    case kConvert: {
-      const qs::QuadMesh q = run_conversion(mesh_file_of(m->cm), name, out);
-      assign_quads(m->cm, q);
-      m->clearDataMask(MeshModel::MM_FACEFACETOPO | MeshModel::MM_VERTFACETOPO);
-      m->UpdateBoxAndNormals();
-      break;
-    }
-    case kFitmaps: {
-      const qs::Fitmaps f = run_fitmaps(mesh_file_of(m->cm), name, params.getFloat("Tau"), progress_of(cb), out);
-      m->updateDataMask(MeshModel::MM_VERTQUALITY);
-      store_fitmaps(m->cm, f);
-      break;
-    }
-    case kQuality: {
-      MeshModel* ref = params.getMesh("ReferenceMesh");
-      if (!ref) throw qs::InvalidInput("choose a reference mesh");
-      run_quality(mesh_file_of(m->cm), name, mesh_file_of(ref->cm), ref->label().toStdString(),
-                  unsigned(std::max(1000, params.getInt("SampleNum"))), out);
-      break;
-    }
-    default: throw std::invalid_argument("unknown filter");
-  }
+  const Outcome out = apply_filter(
+      id, md, params, cb, [](MeshModel* m) { m->UpdateBoxAndNormals(); },
+      [&] { return params.getMesh("ReferenceMesh"); });
   for (const std::string& line : out.log) Log(GLLogStream::FILTER, line);
   return true;
 }

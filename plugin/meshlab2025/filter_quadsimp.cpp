@@ -5,9 +5,7 @@
 
 #include <exception>
 
-#include "filter_runner.h"
-#include "filter_specs.h"
-#include "layer_conversion.h"
+#include "apply_filter.h"
 #include "quadsimp/util/errors.h"
 
 using namespace qs::plugin;
@@ -71,62 +69,19 @@ RichParameterList QuadsimpFilterPlugin::initParameterList(const QAction* a, cons
   return list;
 }
 
-namespace {
-
-std::map<std::string, QVariant> run(int id, const RichParameterList& params, MeshDocument& md, vcg::CallBackPos* cb,
-                                    const MeshLabPluginLogger& logger) {
-  MeshModel* m = md.mm();
-  if (!m) throw qs::InvalidInput("there is no current mesh");
-  const std::string name = m->label().toStdString();
-  require_faces(m->cm, name);
-  Outcome out;
-  switch (id) {
-    case kSimplify: {
-      const qs::QuadMesh q =
-          run_simplification(mesh_file_of(m->cm), name, simplify_params_of(params), progress_of(cb), out);
-      MeshModel* result = md.addNewMesh("", m->label() + " quads", true);
-      assign_quads(result->cm, q);
-      result->updateBoxAndNormals();
-      break;
-    }
-    case kConvert: {
-      const qs::QuadMesh q = run_conversion(mesh_file_of(m->cm), name, out);
-      assign_quads(m->cm, q);
-      m->clearDataMask(MeshModel::MM_FACEFACETOPO | MeshModel::MM_VERTFACETOPO);
-      m->updateBoxAndNormals();
-      break;
-    }
-    case kFitmaps: {
-      const qs::Fitmaps f = run_fitmaps(mesh_file_of(m->cm), name, params.getFloat("Tau"), progress_of(cb), out);
-      m->updateDataMask(MeshModel::MM_VERTQUALITY);
-      store_fitmaps(m->cm, f);
-      break;
-    }
-    case kQuality: {
-      const MeshModel* ref = md.getMesh(params.getMeshId("ReferenceMesh"));
-      if (!ref) throw qs::InvalidInput("choose a reference mesh");
-      run_quality(mesh_file_of(m->cm), name, mesh_file_of(ref->cm), ref->label().toStdString(),
-                  unsigned(std::max(1000, params.getInt("SampleNum"))), out);
-      break;
-    }
-    default: throw std::invalid_argument("unknown filter");
-  }
-  for (const std::string& line : out.log) logger.log(line);
-  std::map<std::string, QVariant> values;
-  for (const auto& [k, v] : out.values) values[k] = QVariant(v);
-  return values;
-}
-
-}  // namespace
-
 std::map<std::string, QVariant> QuadsimpFilterPlugin::applyFilter(const QAction* a, const RichParameterList& params,
                                                                   MeshDocument& md, unsigned int& postConditionMask,
                                                                   vcg::CallBackPos* cb) {
   // MeshLab 2025 reports failures through MLException (pymeshlab turns it into a
   // Python exception); nothing else may escape.
   try {
-    auto values = run(ID(a), params, md, cb, *this);
+    const Outcome out = apply_filter(
+        ID(a), md, params, cb, [](MeshModel* m) { m->updateBoxAndNormals(); },
+        [&] { return md.getMesh(params.getMeshId("ReferenceMesh")); });
+    for (const std::string& line : out.log) log(line);
     postConditionMask = postCondition(a);
+    std::map<std::string, QVariant> values;
+    for (const auto& [k, v] : out.values) values[k] = QVariant(v);
     return values;
   } catch (const qs::InvalidInput& e) {
     throw MLException(QString::fromStdString(e.what()));

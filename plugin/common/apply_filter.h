@@ -1,0 +1,63 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+// The body of applyFilter for both MeshLab generations: their MeshDocument and
+// MeshModel share every call used here except two, which the adapter passes in.
+#pragma once
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+#include "filter_runner.h"
+#include "filter_specs.h"
+#include "layer_conversion.h"
+
+namespace qs::plugin {
+
+//! Runs filter `id` on the current layer of `md`. `update_box(model*)` recomputes a
+//! layer's bounding box and normals; `reference_layer()` returns the layer chosen as
+//! ReferenceMesh (nullptr if none). \throw InvalidInput, std::invalid_argument.
+template <class Document, class ParameterList, class CallBack, class UpdateBox, class ReferenceLayer>
+Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack* cb, UpdateBox update_box,
+                     ReferenceLayer reference_layer) {
+  auto* m = md.mm();
+  using Model = std::remove_pointer_t<decltype(m)>;
+  if (!m) throw InvalidInput("there is no current mesh");
+  const std::string name = m->label().toStdString();
+  require_faces(m->cm, name);
+  Outcome out;
+  switch (id) {
+    case kSimplify: {
+      const QuadMesh q =
+          run_simplification(mesh_file_of(m->cm), name, simplify_params_of(params), progress_of(cb), out);
+      auto* result = md.addNewMesh("", m->label() + " quads", true);
+      assign_quads(result->cm, q);
+      update_box(result);
+      break;
+    }
+    case kConvert: {
+      const QuadMesh q = run_conversion(mesh_file_of(m->cm), name, out);
+      assign_quads(m->cm, q);
+      m->clearDataMask(Model::MM_FACEFACETOPO | Model::MM_VERTFACETOPO);
+      update_box(m);
+      break;
+    }
+    case kFitmaps: {
+      const Fitmaps f = run_fitmaps(mesh_file_of(m->cm), name, params.getFloat("Tau"), progress_of(cb), out);
+      m->updateDataMask(Model::MM_VERTQUALITY);
+      store_fitmaps(m->cm, f);
+      break;
+    }
+    case kQuality: {
+      const auto* ref = reference_layer();
+      if (!ref) throw InvalidInput("choose a reference mesh");
+      run_quality(mesh_file_of(m->cm), name, mesh_file_of(ref->cm), ref->label().toStdString(),
+                  unsigned(std::max(1000, params.getInt("SampleNum"))), out);
+      break;
+    }
+    default: throw std::invalid_argument("unknown filter");
+  }
+  return out;
+}
+
+}  // namespace qs::plugin
