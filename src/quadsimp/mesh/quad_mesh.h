@@ -70,9 +70,10 @@ class QuadMesh {
   Vec3& position(Index v) { return pos_[v]; }
   const std::vector<Vec3>& positions() const { return pos_; }
 
-  //! Calls fn(h) for every outgoing half-edge of v, in fan order. At a border vertex
-  //! the last outgoing border edge (the one that closes the fan) is not a face
-  //! half-edge of v and is not visited; use valence() for edge counts.
+  //! Calls fn(h) for the outgoing half-edge of v in each of its faces, in fan order
+  //! (one per face). At a border vertex the walk starts on the outgoing border edge;
+  //! the incoming border edge belongs to no outgoing half-edge, so the visits number
+  //! one less than the valence there.
   template <class Fn>
   void for_each_outgoing(Index v, Fn&& fn) const {
     const Index start = out_[v];

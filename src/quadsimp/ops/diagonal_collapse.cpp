@@ -26,21 +26,9 @@ Vec3 collapse_position(const QuadMesh& m, Index f, Index k) {
 }
 
 bool collapse_folds(const QuadMesh& m, Index f, Index k, const Vec3& p) {
-  const Index a = m.vertex(f, k), c = m.vertex(f, k + 2);
-  bool folds = false;
-  for (Index x : {a, c}) {
-    m.for_each_outgoing(x, [&](Index h) {
-      const Index g = QuadMesh::face(h);
-      if (g == f || folds) return;
-      std::array<Vec3, 4> q;
-      for (Index i = 0; i < 4; ++i) {
-        const Index v = m.vertex(g, i);
-        q[i] = (v == a || v == c) ? p : m.position(v);
-      }
-      if (!quad_keeps_orientation(q[0], q[1], q[2], q[3], m.face_area_normal(g))) folds = true;
-    });
-  }
-  return folds;
+  return !for_each_face_after_collapse(m, f, k, p, [&](Index g, const Vec3* q) {
+    return quad_keeps_orientation(q[0], q[1], q[2], q[3], m.face_area_normal(g));
+  });
 }
 
 Index collapse_diagonal(QuadMesh& m, Index f, Index k, const Vec3& p) {

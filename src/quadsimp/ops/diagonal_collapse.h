@@ -27,6 +27,27 @@ bool can_collapse_diagonal(const QuadMesh& mesh, Index f, Index k);
 //! (the border stays on the input's border), otherwise the midpoint.
 Vec3 collapse_position(const QuadMesh& mesh, Index f, Index k);
 
+//! Calls test(g, corners) for every face g other than f around diagonal k, with the
+//! corners it would have after the collapse (the merged vertex at p), until one call
+//! returns false; returns whether all passed. For geometric checks of a collapse.
+template <class Test>
+bool for_each_face_after_collapse(const QuadMesh& mesh, Index f, Index k, const Vec3& p, Test&& test) {
+  const Index a = mesh.vertex(f, k), c = mesh.vertex(f, k + 2);
+  bool ok = true;
+  for (Index x : {a, c})
+    mesh.for_each_outgoing(x, [&](Index h) {
+      const Index g = QuadMesh::face(h);
+      if (g == f || !ok) return;
+      Vec3 q[4];
+      for (Index i = 0; i < 4; ++i) {
+        const Index v = mesh.vertex(g, i);
+        q[i] = (v == a || v == c) ? p : mesh.position(v);
+      }
+      ok = test(g, q);
+    });
+  return ok;
+}
+
 //! True when moving the merged vertex to `p` would fold a face around it: the
 //! normal (cross of the diagonals) of a face incident to a or c other than f turns
 //! by 90 degrees or more, or vanishes.

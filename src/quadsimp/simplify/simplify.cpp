@@ -63,25 +63,6 @@ class Simplifier {
            m_.valence(m_.vertex(f, k)) + m_.valence(m_.vertex(f, k + 2)) - 2 > opt_.max_valence;
   }
   bool m_fitmap_allows(Index f, Index k, const Vec3& pos) const;
-  //! Calls test(g, corners) for every face g around diagonal k of f as it would be
-  //! after the collapse (the merged vertex at pos), until one returns false.
-  template <class Test>
-  bool for_each_merged_face(Index f, Index k, const Vec3& pos, Test&& test) const {
-    const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
-    bool ok = true;
-    for (Index x : {a, c})
-      m_.for_each_outgoing(x, [&](Index h) {
-        const Index g = QuadMesh::face(h);
-        if (g == f || !ok) return;
-        Vec3 q[4];
-        for (Index i = 0; i < 4; ++i) {
-          const Index v = m_.vertex(g, i);
-          q[i] = (v == a || v == c) ? pos : m_.position(v);
-        }
-        ok = test(g, q);
-      });
-    return ok;
-  }
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
   void coarsen_border();
   bool remove_border_vertex(Index b);
@@ -117,7 +98,8 @@ class Simplifier {
   double s_lo_ = 0, s_hi_ = std::numeric_limits<double>::infinity();
   std::uint32_t stamp_ = 0;
   std::vector<Entry> heap_;
-  std::vector<Index> region_faces_, region_verts_, work_, cand_;
+  std::vector<Index> region_faces_, region_verts_, work_, cand_, border_verts_;
+  bool has_border_ = false;  // no operator makes a border where there was none
 };
 
 double norm_of_diagonal(const QuadMesh& m, Index f, Index k) {
@@ -197,7 +179,7 @@ int Simplifier::target_valence_of_border(Index v) const {
 bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
   const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
   auto shape_after = [&](const Vec3& p, const Vec3& p_normal) {
-    return for_each_merged_face(f, k, p, [&](Index g, const Vec3* q) { return shape_ok(g, q, p_normal); });
+    return for_each_face_after_collapse(m_, f, k, p, [&](Index g, const Vec3* q) { return shape_ok(g, q, p_normal); });
   };
   if (m_.is_border_vertex(a) || m_.is_border_vertex(c)) {
     foot = ref_.closest(collapse_position(m_, f, k));  // the border end is on M0 already
@@ -226,7 +208,7 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
 // corner distance) above F_M at its centre. The faces are those around a and c
 // after the merge, with the survivor at `pos`.
 bool Simplifier::m_fitmap_allows(Index f, Index k, const Vec3& pos) const {
-  return for_each_merged_face(f, k, pos, [&](Index, const Vec3* q) {
+  return for_each_face_after_collapse(m_, f, k, pos, [&](Index, const Vec3* q) {
     const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
     double radius = 0;
     for (int i = 0; i < 4; ++i) radius = std::max(radius, (q[i] - centre).norm());
@@ -441,11 +423,11 @@ void Simplifier::cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& fo
 // border). Nothing happens unless both steps pass their checks; a rotation whose ear
 // is refused is undone.
 void Simplifier::coarsen_border() {
-  thread_local std::vector<Index> candidates;
-  candidates.clear();
+  // The list is taken first: removals kill vertices and move others to the border.
+  border_verts_.clear();
   for (Index v = 0; v < m_.vertex_capacity(); ++v)
-    if (m_.is_vertex_live(v) && m_.is_border_vertex(v)) candidates.push_back(v);
-  for (Index b : candidates)
+    if (m_.is_vertex_live(v) && m_.is_border_vertex(v)) border_verts_.push_back(v);
+  for (Index b : border_verts_)
     if (m_.is_vertex_live(b) && m_.is_border_vertex(b)) remove_border_vertex(b);
 }
 
@@ -462,7 +444,7 @@ bool Simplifier::remove_border_vertex(Index b) {
     const Vec3 p = m_.position(b);
     const SurfacePoint foot = ref_.closest(p);
     if (!can_collapse_border_ear(m_, ear, k) || !foot.found() ||
-        !for_each_merged_face(ear, (k + 1) & 3u, p,
+        !for_each_face_after_collapse(m_, ear, (k + 1) & 3u, p,
                               [&](Index g, const Vec3* q) { return shape_ok(g, q, ref_.normal_at(foot)); }))
       return false;
     const Index d = m_.vertex(ear, k + 2);
@@ -544,6 +526,8 @@ SimplifyReport Simplifier::run() {
       const SurfacePoint s = ref_.closest(m_.position(v));
       if (s.found()) record_foot(v, s);
     }
+  for (Index v = 0; v < m_.vertex_capacity() && !has_border_; ++v)
+    has_border_ = m_.is_vertex_live(v) && m_.is_border_vertex(v);
   mu_ = mean_edge_length(m_);
   rebuild_heap();
 
@@ -575,7 +559,8 @@ SimplifyReport Simplifier::run() {
       continue;
     }
     cycle(e.face, e.k, pos, foot);
-    if (opt_.coarsen_border && !opt_.preserve_boundary && rep_.collapses % 64 == 0) coarsen_border();
+    if (has_border_ && opt_.coarsen_border && !opt_.preserve_boundary && rep_.collapses % 64 == 0)
+      coarsen_border();
     if (rep_.collapses >= next_mu) {
       // mu drifts slowly: an exact recount every ~2% of the faces (mu moves ~1%) is cheaper than
       // tracking every edge each operation touches, and as accurate.
