@@ -69,6 +69,22 @@ TEST_F(MeshIo, quad_round_trip_every_output_format) {
   }
 }
 
+TEST_F(MeshIo, tombstones_are_skipped_when_writing) {
+  QuadMesh m = quad_grid(3, 1);  // faces (0,1,5,4) (1,2,6,5) (2,3,7,6)
+  m.kill_face(0);
+  m.kill_vertex(0);
+  m.kill_vertex(4);
+  m.set_out(1, QuadMesh::halfedge(1, 0));
+  m.set_out(5, QuadMesh::halfedge(1, 3));
+  m.repair_out(1);
+  m.repair_out(5);
+  validate(m);
+  write_quad_mesh(path("t.ply"), m);
+  QuadMesh compacted = m;
+  compacted.compact();
+  expect_same_quads(compacted, read_mesh(path("t.ply")));
+}
+
 TEST_F(MeshIo, triangle_inputs_in_every_format) {
   const std::string ply_ascii = write("a.ply",
       "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"

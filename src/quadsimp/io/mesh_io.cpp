@@ -130,14 +130,23 @@ void write_atomically(const std::string& path, WriteFn&& write) {
   }
 }
 
-void fill_poly_mesh(const std::vector<Vec3>& pos, const std::vector<std::array<Index, 4>>& quads,
-                    PMesh& pm) {
-  auto vi = vcg::tri::Allocator<PMesh>::AddVertices(pm, pos.size());
-  for (std::size_t i = 0; i < pos.size(); ++i, ++vi) vi->P() = vcg::Point3d(pos[i].x(), pos[i].y(), pos[i].z());
-  auto fi = vcg::tri::Allocator<PMesh>::AddFaces(pm, quads.size());
-  for (std::size_t f = 0; f < quads.size(); ++f, ++fi) {
+// The live vertices and faces of q (tombstones skipped, ids renumbered in order).
+void fill_poly_mesh(const QuadMesh& q, PMesh& pm) {
+  std::vector<Index> id(q.vertex_capacity(), kNone);
+  auto vi = vcg::tri::Allocator<PMesh>::AddVertices(pm, q.n_vertices());
+  Index n = 0;
+  for (Index v = 0; v < q.vertex_capacity(); ++v) {
+    if (!q.is_vertex_live(v)) continue;
+    id[v] = n++;
+    const Vec3& p = q.position(v);
+    (vi++)->P() = vcg::Point3d(p.x(), p.y(), p.z());
+  }
+  auto fi = vcg::tri::Allocator<PMesh>::AddFaces(pm, q.n_faces());
+  for (Index f = 0; f < q.face_capacity(); ++f) {
+    if (!q.is_face_live(f)) continue;
     fi->Alloc(4);
-    for (int k = 0; k < 4; ++k) fi->V(k) = &pm.vert[quads[f][k]];
+    for (Index k = 0; k < 4; ++k) fi->V(k) = &pm.vert[id[q.vertex(f, k)]];
+    ++fi;
   }
 }
 
@@ -158,13 +167,11 @@ MeshFile read_mesh(const std::string& path) {
 }
 
 void write_quad_mesh(const std::string& path, const QuadMesh& mesh) {
-  QuadMesh compacted = mesh;
-  compacted.compact();
   const std::string ext = extension_of(path);
   if (ext != "ply" && ext != "obj" && ext != "off")
     fail(path, "cannot write '" + ext + "' (quads are written as .ply, .obj or .off)");
   PMesh pm;
-  fill_poly_mesh(compacted.positions(), compacted.quads(), pm);
+  fill_poly_mesh(mesh, pm);
   write_atomically(path, [&](const std::string& tmp) {
     int err = 0;
     // vcglib's binary PLY writer emits triangles only (three indices per face,
