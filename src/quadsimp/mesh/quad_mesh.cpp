@@ -72,7 +72,8 @@ QuadMesh QuadMesh::from_faces(std::vector<Vec3> positions,
     const Index v = m.from(h);
     if (m.out_[v] == kNone || m.twin_[h] == kNone) m.out_[v] = h;
   }
-  const std::vector<Index> count = outgoing_counts(m);
+  m.face_count_ = outgoing_counts(m);
+  const std::vector<Index>& count = m.face_count_;
   for (Index v = 0; v < nv; ++v) {
     if (m.out_[v] == kNone) continue;
     ++m.n_live_vertices_;
@@ -89,12 +90,6 @@ bool QuadMesh::is_border_face(Index f) const {
   return false;
 }
 
-int QuadMesh::valence(Index v) const {
-  int n = 0;
-  for_each_outgoing(v, [&](Index) { ++n; });
-  return is_border_vertex(v) ? n + 1 : n;
-}
-
 Vec3 QuadMesh::face_area_normal(Index f) const {
   const auto q = face_vertices(f);
   return (pos_[q[2]] - pos_[q[0]]).cross(pos_[q[3]] - pos_[q[1]]);
@@ -108,6 +103,7 @@ Vec3 QuadMesh::face_centroid(Index f) const {
 Index QuadMesh::add_vertex(const Vec3& p) {
   pos_.push_back(p);
   out_.push_back(kNone);
+  face_count_.push_back(0);
   return Index(pos_.size() - 1);
 }
 
@@ -116,6 +112,7 @@ Index QuadMesh::add_face(const std::array<Index, 4>& v) {
   for (Index k = 0; k < 4; ++k) {
     origin_.push_back(v[k]);
     twin_.push_back(kNone);
+    ++face_count_[v[k]];
     if (out_[v[k]] == kNone) {
       out_[v[k]] = 4 * f + k;
       ++n_live_vertices_;
@@ -131,6 +128,7 @@ void QuadMesh::kill_face(Index f) {
     const Index h = 4 * f + k;
     if (twin_[h] != kNone && twin_[twin_[h]] == h) twin_[twin_[h]] = kNone;
     twin_[h] = kNone;
+    --face_count_[origin_[h]];
     origin_[h] = kNone;
   }
   --n_live_faces_;
@@ -167,10 +165,11 @@ void QuadMesh::compact(std::vector<Index>* vertex_map, std::vector<Index>* face_
     if (is_face_live(f)) fmap[f] = nf++;
 
   std::vector<Vec3> pos(nv);
-  std::vector<Index> out(nv);
+  std::vector<Index> out(nv), face_count(nv);
   for (Index v = 0; v < pos_.size(); ++v) {
     if (vmap[v] == kNone) continue;
     pos[vmap[v]] = pos_[v];
+    face_count[vmap[v]] = face_count_[v];
     out[vmap[v]] = 4 * fmap[face(out_[v])] + corner(out_[v]);
   }
   std::vector<Index> origin(4 * std::size_t(nf)), twin(4 * std::size_t(nf));
@@ -184,6 +183,7 @@ void QuadMesh::compact(std::vector<Index>* vertex_map, std::vector<Index>* face_
   }
   pos_ = std::move(pos);
   out_ = std::move(out);
+  face_count_ = std::move(face_count);
   origin_ = std::move(origin);
   twin_ = std::move(twin);
   n_live_vertices_ = nv;
@@ -239,6 +239,8 @@ void validate(const QuadMesh& m) {
       fail("vertex " + std::to_string(v) + " has an invalid out half-edge");
     if (fan_size(m, v, count[v]) != count[v])
       fail("vertex " + std::to_string(v) + " is not a single fan (non-manifold or bad border out-edge)");
+    if (m.valence(v) != int(count[v]) + (m.is_border_vertex(v) ? 1 : 0))
+      fail("vertex " + std::to_string(v) + " has a stale cached face count");
   }
   if (live_vertices != m.n_vertices()) fail("live vertex count is stale");
   for (Index v = 0; v < m.vertex_capacity(); ++v)
