@@ -179,6 +179,37 @@ TEST(ReferenceSurface, projection_lands_on_the_surface) {
   EXPECT_NEAR(ref.interpolate(x, hit), hit.point.x(), 1e-5);
 }
 
+TEST(ReferenceSurface, project_near_walks_to_the_same_hit) {
+  TriMesh s = tri_sphere(30, 40);
+  clean(s);
+  const ReferenceSurface ref(s);
+  int same_face = 0;
+  for (int i = 0; i < 50; ++i) {
+    const Vec3 dir = Vec3(std::cos(i * 0.7) * std::sin(i * 0.3 + 0.2), std::sin(i * 0.7) * std::sin(i * 0.3 + 0.2),
+                          std::cos(i * 0.3 + 0.2)).normalized();
+    const SurfacePoint expect = ref.project(1.1 * dir, dir, 1.0);
+    // Start a few triangles away (the foot of a nearby point), on the far side of the
+    // sphere (the walk must give up and the BVH answers), and from no triangle at all.
+    const Vec3 side = dir.cross(Vec3(0.3, 0.5, 0.8)).normalized();
+    const Index near_start = ref.closest((dir + 0.15 * side).normalized()).face;
+    const Index far_start = ref.closest(-dir).face;
+    for (Index start : {near_start, far_start, kNone}) {
+      const SurfacePoint hit = ref.project_near(start, 1.1 * dir, dir, 1.0);
+      ASSERT_TRUE(hit.found());
+      EXPECT_LT((hit.point - expect.point).norm(), 1e-6);  // Embree intersects in single precision
+      EXPECT_NEAR(hit.distance, expect.distance, 1e-6);
+      same_face += start == near_start && hit.face == expect.face;
+    }
+  }
+  EXPECT_EQ(same_face, 50);
+  // Off the border of an open grid the walk stops and the closest-point fallback answers.
+  const TriMesh grid = tri_grid(4, 4);
+  const ReferenceSurface flat(grid);
+  const SurfacePoint out = flat.project_near(0, Vec3(9, 9, 1), Vec3(0, 0, 1), 0.5);
+  ASSERT_TRUE(out.found());
+  EXPECT_LT((out.point - flat.closest(Vec3(9, 9, 1)).point).norm(), 1e-12);
+}
+
 TEST(Metrics, regular_grid_and_cube) {
   const QuadQuality g = quad_quality(quad_grid(6, 5));
   EXPECT_DOUBLE_EQ(g.regular_percent, 100.0 * (42 - 4) / 42);  // only the 4 corners are irregular

@@ -13,20 +13,22 @@ inline Vec3 quad_normal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ve
 
 //! False when the quad's normal turns by 90 degrees or more from `reference`, or
 //! (nearly) vanishes relative to it: the quad would be folded or degenerate.
-inline bool quad_keeps_orientation(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3,
-                                   const Vec3& reference) {
-  const Vec3 n = quad_normal(p0, p1, p2, p3);
+inline bool keeps_orientation(const Vec3& n, const Vec3& reference) {
   return n.dot(reference) > 0 && n.squaredNorm() > 1e-24 * reference.squaredNorm();
 }
+inline bool quad_keeps_orientation(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3,
+                                   const Vec3& reference) {
+  return keeps_orientation(quad_normal(p0, p1, p2, p3), reference);
+}
 
-//! True when every corner turns the same way as the quad's normal: convex in its
-//! own (best) plane.
+//! True when every corner turns the same way as the quad's normal n (the cross of its
+//! diagonals): convex in its own (best) plane.
+inline bool quad_is_convex(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, const Vec3& n) {
+  const Vec3 e0 = p1 - p0, e1 = p2 - p1, e2 = p3 - p2, e3 = p0 - p3;
+  return e3.cross(e0).dot(n) > 0 && e0.cross(e1).dot(n) > 0 && e1.cross(e2).dot(n) > 0 && e2.cross(e3).dot(n) > 0;
+}
 inline bool quad_is_convex(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
-  const Vec3 p[4] = {p0, p1, p2, p3};
-  const Vec3 n = quad_normal(p0, p1, p2, p3);
-  for (int k = 0; k < 4; ++k)
-    if ((p[(k + 1) % 4] - p[k]).cross(p[(k + 3) % 4] - p[k]).dot(n) <= 0) return false;
-  return true;
+  return quad_is_convex(p0, p1, p2, p3, quad_normal(p0, p1, p2, p3));
 }
 
 }  // namespace qs

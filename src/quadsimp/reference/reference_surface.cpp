@@ -3,6 +3,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -104,6 +105,7 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   }
   for (Vec3& n : vertex_normals_) n.normalize();
   mean_edge_ = mesh_.n_faces() ? edge_sum / (3.0 * mesh_.n_faces()) : 0.0;
+  adjacency_ = triangle_adjacency(mesh_);
 
   bvh_->device = rtcNewDevice("threads=0");
   if (!bvh_->device) throw std::runtime_error("Embree: cannot create a device");
@@ -198,6 +200,37 @@ SurfacePoint ReferenceSurface::project(const Vec3& p, const Vec3& dir, double ma
   s = closest(p, max_dist, dir);
   if (s.found()) return s;
   return closest(p);
+}
+
+SurfacePoint ReferenceSurface::project_near(Index start, const Vec3& p, const Vec3& dir, double max_dist) const {
+  constexpr int kMaxSteps = 32;
+  const double len = dir.norm();
+  if (start < mesh_.n_faces() && len > 0) {
+    const Vec3 d = dir / len;
+    const auto& P = mesh_.positions;
+    Index t = start;
+    for (int step = 0; step < kMaxSteps && t != kNone; ++step) {
+      const Vec3& n = normals_[t];
+      const double cos = n.dot(d);
+      if (cos < 1e-3) break;  // disagreeing or grazing: let the BVH decide
+      const auto& f = mesh_.faces[t];
+      const Vec3 &a = P[f[0]], &b = P[f[1]], &c = P[f[2]];
+      const double s = (a - p).dot(n) / cos;
+      const Vec3 y = p + s * d;
+      const double area2 = (b - a).cross(c - a).dot(n);
+      const double w[3] = {(b - y).cross(c - y).dot(n) / area2, (c - y).cross(a - y).dot(n) / area2,
+                           (a - y).cross(b - y).dot(n) / area2};
+      const int worst = int(std::min_element(w, w + 3) - w);
+      if (w[worst] >= -1e-9) {
+        if (std::abs(s) > max_dist) break;
+        return SurfacePoint{t, w[1], w[2], y, std::abs(s)};
+      }
+      // Leave across the edge opposite the corner with the most negative weight;
+      // edge k runs from corner k to corner k+1.
+      t = adjacency_[t][(worst + 1) % 3];
+    }
+  }
+  return project(p, dir, max_dist);
 }
 
 double ReferenceSurface::interpolate(const std::vector<float>& field, const SurfacePoint& s) const {

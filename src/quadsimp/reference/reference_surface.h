@@ -1,6 +1,7 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <array>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -39,6 +40,12 @@ class ReferenceSurface {
   //! agrees with dir (dot > 0). Falls back to the closest point within max_dist with
   //! an agreeing normal, then to the closest point at any distance with any normal.
   SurfacePoint project(const Vec3& p, const Vec3& dir, double max_dist) const;
+  //! The same, starting from a known nearby triangle (the point's previous foot): the
+  //! line is followed across neighbouring triangles from `start`, which is much
+  //! cheaper than a ray through the BVH for the small moves of smoothing, and stays on
+  //! the sheet the point was on. Falls back to project() when the walk leaves M0,
+  //! meets a disagreeing triangle or takes too many steps.
+  SurfacePoint project_near(Index start, const Vec3& p, const Vec3& dir, double max_dist) const;
   //! Nearest point of the line only (no fallback).
   SurfacePoint ray_project(const Vec3& p, const Vec3& dir, double max_dist) const;
   //! Closest point within max_dist; if `normal` is nonzero, only triangles whose
@@ -54,6 +61,7 @@ class ReferenceSurface {
  private:
   TriMesh mesh_;
   std::vector<Vec3> normals_, vertex_normals_;
+  std::vector<std::array<Index, 3>> adjacency_;  // for project_near()
   double diagonal_ = 0, mean_edge_ = 0;
   struct Bvh;
   std::unique_ptr<Bvh> bvh_;

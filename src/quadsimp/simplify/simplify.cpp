@@ -83,7 +83,10 @@ class Simplifier {
   void rebuild_heap();
   double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n) const;
   double s_weight(Index f) const;
-  void record_foot(Index v, const SurfacePoint& s) { foot_normal_[v] = ref_.normal_at(s); }
+  void record_foot(Index v, const SurfacePoint& s) {
+    foot_normal_[v] = ref_.normal_at(s);
+    foot_face_[v] = s.face;
+  }
 
   QuadMesh& m_;
   const ReferenceSurface& ref_;
@@ -94,6 +97,7 @@ class Simplifier {
   // Reference normal under each vertex (at its last projection): faces are checked
   // against these, so that no sequence of small turns can flip a face.
   std::vector<Vec3> foot_normal_;
+  std::vector<Index> foot_face_;  // the triangle under each vertex: where project_near() starts
   // Adaptive mode: the F_S range the priority is clamped to.
   double s_lo_ = 0, s_hi_ = std::numeric_limits<double>::infinity();
   std::uint32_t stamp_ = 0;
@@ -156,10 +160,13 @@ Vec3 Simplifier::reference_direction(Index f, const Vec3& extra_normal) const {
 // A face with new corner positions q stays oriented like the reference surface under
 // it and like itself before, and a convex face stays convex.
 bool Simplifier::shape_ok(Index f, const Vec3* q, const Vec3& extra_normal) const {
-  if (!quad_keeps_orientation(q[0], q[1], q[2], q[3], m_.face_area_normal(f))) return false;
-  const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]).normalized();
-  if (n.dot(reference_direction(f, extra_normal).normalized()) < 0.2) return false;
-  if (quad_is_convex(q[0], q[1], q[2], q[3])) return true;
+  // The hottest check of the run (every smoothing move): one normal, no square roots.
+  const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]);
+  if (!keeps_orientation(n, m_.face_area_normal(f))) return false;
+  const Vec3 r = reference_direction(f, extra_normal);
+  const double cos_r = n.dot(r);  // the angle to the reference must stay below acos(0.2)
+  if (cos_r < 0 || cos_r * cos_r < 0.04 * n.squaredNorm() * r.squaredNorm()) return false;
+  if (quad_is_convex(q[0], q[1], q[2], q[3], n)) return true;
   const auto c = m_.face_vertices(f);
   return !quad_is_convex(m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3]));
 }
@@ -189,7 +196,8 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
   // The paper's place: the midpoint projected along the normal. Where that would fold a
   // neighbour (small faces on curved parts), either end is tried too: both lie on M0,
   // and without this such faces stay, with their short edges, to the end.
-  foot = ref_.project(collapse_position(m_, f, k), vertex_normal(a) + vertex_normal(c), 2 * norm_of_diagonal(m_, f, k));
+  foot = ref_.project_near(foot_face_[a], collapse_position(m_, f, k), vertex_normal(a) + vertex_normal(c),
+                           2 * norm_of_diagonal(m_, f, k));
   if (foot.found() && shape_after(foot.point, ref_.normal_at(foot))) {
     pos = foot.point;
     return true;
@@ -368,7 +376,7 @@ void Simplifier::smooth_vertex(Index v) {
     target = p + d - d.dot(n) * n;
     // Already at rest: skip the projection and the checks (most vertices in later sweeps).
     if ((target - p).squaredNorm() < 1e-4 * mu_ * mu_) return;
-    foot = ref_.project(target, n, 2 * mu_);
+    foot = ref_.project_near(foot_face_[v], target, n, 2 * mu_);
     if (!foot.found()) return;
     target = foot.point;
   }
@@ -514,6 +522,7 @@ SimplifyReport Simplifier::run() {
   face_mark_.assign(m_.face_capacity(), 0);
   vertex_mark_.assign(m_.vertex_capacity(), 0);
   foot_normal_.assign(m_.vertex_capacity(), Vec3::Zero());
+  foot_face_.assign(m_.vertex_capacity(), kNone);
   if (opt_.adaptive && opt_.s_percentiles > 0) {
     std::vector<float> sorted = opt_.fitmaps->s;
     std::sort(sorted.begin(), sorted.end());
