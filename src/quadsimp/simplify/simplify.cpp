@@ -166,11 +166,13 @@ bool Simplifier::shape_ok(Index f, const Vec3* q, const Vec3& extra_normal) cons
   const Vec3 r = reference_direction(f, extra_normal);
   const double cos_r = n.dot(r);  // the angle to the reference must stay below acos(0.2)
   if (cos_r < 0 || cos_r * cos_r < 0.04 * n.squaredNorm() * r.squaredNorm()) return false;
-  // A corner facing away means the face spans a sharp fold of M0 (a wing's edge): the
-  // sum of the corner normals can still agree while the surface under the face's
-  // middle faces the other way. Rare, so the closest-point query is affordable here.
+  // A corner where the face stands steep on M0 (or faces away) means the face spans a
+  // sharp fold (a wing's edge): the sum of the corner normals can still agree while
+  // the surface under the face's middle faces the other way. Rare, so the
+  // closest-point query is affordable here.
+  const double steep = 0.2 * n.norm();
   bool spans_fold = false;
-  for (Index k = 0; k < 4; ++k) spans_fold |= foot_normal_[m_.vertex(f, k)].dot(n) < 0;
+  for (Index k = 0; k < 4; ++k) spans_fold |= foot_normal_[m_.vertex(f, k)].dot(n) < steep;
   if (spans_fold) {
     const SurfacePoint mid = ref_.closest(0.25 * (q[0] + q[1] + q[2] + q[3]));
     if (mid.found() && ref_.normal_at(mid).dot(n) < 0) return false;
