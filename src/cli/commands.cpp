@@ -112,6 +112,7 @@ int run_simplify(const SimplifyArgs& a) {
   params.auto_halt = a.auto_halt;
   params.tau = a.tau;
   params.m_factor = a.m_factor;
+  params.halt_share = a.halt_share;
   params.preserve_boundary = a.preserve_boundary;
   params.fast = a.fast;
   if (const std::string why = check_params(params); !why.empty()) {
@@ -134,9 +135,10 @@ int run_simplify(const SimplifyArgs& a) {
         char extra[256];
         std::snprintf(extra, sizeof extra,
                       ", \"seconds\": %.4f, \"collapses\": %u, \"border_collapses\": %u, \"rotations\": %u, \"input_faces\": %u, "
-                      "\"refused\": {\"topology\": %u, \"valence\": %u, \"geometry\": %u, \"fitmap\": %u}}",
+                      "\"refused\": {\"topology\": %u, \"valence\": %u, \"geometry\": %u, \"fitmap\": %u}, "
+                      "\"blocked_share\": %.4f}",
                       s, r.collapses, r.border_collapses, r.rotations, r.initial_faces, r.refused_topology, r.refused_valence,
-                      r.refused_geometry, r.refused_fitmap);
+                      r.refused_geometry, r.refused_fitmap, r.blocked_share);
         j.pop_back();
         std::printf("%s%s\n", j.c_str(), extra);
         return kOk;

@@ -23,9 +23,14 @@ int main(int argc, char** argv) {
   s->add_option("OUT", simp.output, "output quad mesh (.ply, .obj or .off)")->required();
   s->add_option("-f,--faces", simp.faces, "target number of quads")->check(CLI::PositiveNumber);
   s->add_flag("--adaptive", simp.adaptive, "adaptive mode driven by fitmaps");
-  s->add_flag("--auto-halt", simp.auto_halt, "adaptive: stop when no feasible collapse remains");
+  s->add_flag("--auto-halt", simp.auto_halt,
+              "adaptive: stop once the collapses the M-fitmap refuses cover --halt-share of the surface");
   s->add_option("--tau", simp.tau, "adaptive: M-fitmap tolerance (share of inconsistent area)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   s->add_option("--m-factor", simp.m_factor, "adaptive: a face radius must stay below F_M / this")->capture_default_str()->check(CLI::PositiveNumber);
+  s->add_option("--halt-share", simp.halt_share,
+                "auto-halt: share of the surface the M-fitmap may block before stopping (1: until no feasible collapse remains, the paper's rule)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   s->add_flag("--preserve-boundary", simp.preserve_boundary, "keep the border exactly as it is");
   s->add_flag("--fast", simp.fast, "one rotation/smoothing pass per collapse (the paper's loop): about twice as fast, less regular");
   s->add_flag("--stats", simp.stats, "print quality and distance metrics of the result");

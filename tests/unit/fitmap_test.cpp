@@ -176,6 +176,37 @@ TEST(Adaptive, auto_halt_terminates) {
   EXPECT_GE(q.n_faces(), 6u + 1u);  // the sphere keeps a closed mesh, the far triangle its quad
 }
 
+TEST(Adaptive, auto_halt_stops_once_the_m_fitmap_blocks_its_share) {
+  // F_M allows any size on the lower half of a sphere and nothing on the upper half:
+  // the upper faces are refused from the start, the lower half coarsens.
+  TriMesh t = tri_sphere(30, 40);
+  clean(t);
+  const ReferenceSurface ref(t);
+  Fitmaps f = compute_fitmaps(t);
+  for (Index v = 0; v < t.n_vertices(); ++v)
+    f.m[v] = t.positions[v].z() > 0 ? float(0.1 * ref.mean_edge_length()) : 10.f;
+  auto run = [&](double share, QuadMesh& q) {
+    q = tri_to_quad(t);
+    SimplifyOptions opt;
+    opt.adaptive = true;
+    opt.fitmaps = &f;
+    opt.halt_share = share;
+    const SimplifyReport r = simplify(q, ref, opt);
+    validate(q);
+    return r;
+  };
+  QuadMesh paper, halted;
+  const SimplifyReport until_nothing = run(1.0, paper);  // the paper's rule
+  const SimplifyReport at_share = run(0.3, halted);
+  EXPECT_GT(until_nothing.collapses, 0u);
+  EXPECT_GE(at_share.blocked_share, 0.3);
+  EXPECT_LT(at_share.blocked_share, until_nothing.blocked_share);
+  EXPECT_GT(halted.n_faces(), paper.n_faces());
+  // The paper's rule stops only when the blocked upper half is all that could go on.
+  EXPECT_GT(until_nothing.blocked_share, 0.4);
+  EXPECT_LT(until_nothing.blocked_share, 0.6);
+}
+
 TEST(Adaptive, faces_are_smaller_around_a_bump) {
   // A flat square with one narrow bump in its middle: F_S is ~0 on the flat part, so
   // it is coarsened first.

@@ -15,6 +15,7 @@ std::string check_params(const SimplifyParams& p) {
   if (p.adaptive && !p.auto_halt && p.target_faces == 0) return "the adaptive mode needs a target number of faces or automatic halting";
   if (!(p.tau > 0 && p.tau < 1)) return "tau must be between 0 and 1";
   if (!(p.m_factor > 0)) return "the M-fitmap factor must be positive";
+  if (!(p.halt_share > 0 && p.halt_share <= 1)) return "the halting share must be in (0, 1]";
   return {};
 }
 
@@ -35,6 +36,7 @@ SimplifyReport simplify_input(Input& in, const SimplifyParams& p, const Progress
     opt.adaptive = true;
     opt.fitmaps = &fitmaps;
     opt.m_factor = p.m_factor;
+    opt.halt_share = p.halt_share;
   }
   return simplify(in.quads, ref, opt);
 }

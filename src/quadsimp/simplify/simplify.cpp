@@ -79,6 +79,7 @@ class Simplifier {
   void rebuild_heap();
   double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n) const;
   double s_weight(Index f) const;
+  double blocked_share();
   void record_foot(Index v, const SurfacePoint& s) {
     foot_normal_[v] = ref_.normal_at(s);
     foot_face_[v] = s.face;
@@ -100,6 +101,15 @@ class Simplifier {
   std::vector<Entry> heap_;
   std::vector<Index> region_faces_, region_verts_, work_, cand_, border_verts_;
   bool has_border_ = false;  // no operator makes a border where there was none
+  // Faces the M-fitmap refused to enlarge, with their version and area then: while a
+  // face keeps that version it is still blocked (see SimplifyOptions::halt_share).
+  struct Blocked {
+    Index face;
+    std::uint32_t version;
+    double area;
+  };
+  std::vector<Blocked> blocked_;
+  double area_ = 0;  // of the mesh at the start
 };
 
 double norm_of_diagonal(const QuadMesh& m, Index f, Index k) {
@@ -230,6 +240,22 @@ bool Simplifier::m_fitmap_allows(Index f, Index k, const Vec3& pos) const {
   });
 }
 
+// Share of the surface still blocked by the M-fitmap; drops the entries of faces that
+// died or changed since (and repeats: both diagonals of a face can be refused).
+double Simplifier::blocked_share() {
+  const std::uint32_t seen = ++stamp_;
+  double sum = 0;
+  std::size_t kept = 0;
+  for (const Blocked& b : blocked_) {
+    if (!m_.is_face_live(b.face) || version_[b.face] != b.version || face_mark_[b.face] == seen) continue;
+    face_mark_[b.face] = seen;
+    sum += b.area;
+    blocked_[kept++] = b;
+  }
+  blocked_.resize(kept);
+  return area_ > 0 ? sum / area_ : 0.0;
+}
+
 void Simplifier::add_faces_around(Index v, std::vector<Index>& faces) {
   if (v == kNone || !m_.is_vertex_live(v)) return;
   m_.for_each_outgoing(v, [&](Index h) { faces.push_back(QuadMesh::face(h)); });
@@ -266,7 +292,12 @@ bool Simplifier::try_rotate(Index h) {
   };
   std::pair<int, int> keep{0, 0};
   for (int x : dev) keep.first += std::abs(x), keep.second += x * x;
-  const auto e_a = energy(1, 0), e_b = energy(0, 1);
+  // A direction that would raise a vertex above the valence cap is never profitable.
+  const std::pair<int, int> never{std::numeric_limits<int>::max(), 0};
+  auto capped = [&](Index p, Index q) {
+    return opt_.max_valence > 0 && std::max(m_.valence(p), m_.valence(q)) >= opt_.max_valence;
+  };
+  const auto e_a = capped(x1, y1) ? never : energy(1, 0), e_b = capped(x2, y2) ? never : energy(0, 1);
   if (std::min(e_a, e_b) >= keep) return false;
   // Prefer the lower energy; on a tie the shorter new edge.
   Rotation first = Rotation::Ccw, second = Rotation::Cw;
@@ -552,6 +583,8 @@ SimplifyReport Simplifier::run() {
   for (Index v = 0; v < m_.vertex_capacity() && !has_border_; ++v)
     has_border_ = m_.is_vertex_live(v) && m_.is_border_vertex(v);
   mu_ = mean_edge_length(m_);
+  for (Index f = 0; f < m_.face_capacity(); ++f)
+    if (m_.is_face_live(f)) area_ += 0.5 * m_.face_area_normal(f).norm();
   rebuild_heap();
 
   const Index target = opt_.target_faces;
@@ -579,6 +612,9 @@ SimplifyReport Simplifier::run() {
     }
     if (opt_.adaptive && !m_fitmap_allows(e.face, e.k, pos)) {
       ++rep_.refused_fitmap;
+      blocked_.push_back({e.face, version_[e.face], 0.5 * m_.face_area_normal(e.face).norm()});
+      // Recounting costs the length of the list (and shortens it): every 16 refusals.
+      if (blocked_.size() % 16 == 0 && blocked_share() >= opt_.halt_share && target == 0) break;
       continue;
     }
     cycle(e.face, e.k, pos, foot);
@@ -601,6 +637,7 @@ SimplifyReport Simplifier::run() {
       }
     }
   }
+  if (opt_.adaptive) rep_.blocked_share = blocked_share();
   m_.compact();
   rep_.faces = m_.n_faces();
   rep_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
