@@ -73,6 +73,8 @@ class Simplifier {
   Vec3 vertex_normal(Index v) const;
   bool moved_faces_ok(Index v, const Vec3& p) const;
   bool shape_ok(Index f, const Vec3* q, const Vec3& extra_normal) const;
+  bool follows_reference(const Vec3& n, const std::array<Index, 4>& corners, const Vec3* q,
+                         const Vec3& extra_normal) const;
   int target_valence_of_border(Index v) const;
   int target_valence(Index v) const { return m_.is_border_vertex(v) ? target_valence_of_border(v) : 4; }
   void requeue_region();
@@ -157,30 +159,37 @@ Vec3 Simplifier::vertex_normal(Index v) const {
   return n;
 }
 
+// A quad with normal n (diagonal cross product), corners `corners` at positions q, faces
+// like the surface under it: like its corners' foot normals (plus the merged vertex's
+// for a collapse) within acos(0.2).
+bool Simplifier::follows_reference(const Vec3& n, const std::array<Index, 4>& corners, const Vec3* q,
+                                   const Vec3& extra_normal) const {
+  Vec3 r = extra_normal;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (Index v : corners) {
+    r += foot_normal_[v];
+    lowest = std::min(lowest, foot_normal_[v].dot(n));
+  }
+  const double cos_r = n.dot(r);
+  if (cos_r < 0 || cos_r * cos_r < 0.04 * n.squaredNorm() * r.squaredNorm()) return false;
+  // A corner where the quad stands steep on M0 (or faces away) means it spans a sharp
+  // fold (a wing's edge): the sum of the corner normals can still agree while the
+  // surface under the quad's middle faces the other way. Rare, so the closest-point
+  // query is affordable here.
+  if (lowest < 0.2 * n.norm()) {
+    const SurfacePoint mid = ref_.closest(0.25 * (q[0] + q[1] + q[2] + q[3]));
+    if (mid.found() && ref_.normal_at(mid).dot(n) < 0) return false;
+  }
+  return true;
+}
+
 // A face with new corner positions q stays oriented like the reference surface under
 // it and like itself before, and a convex face stays convex.
 bool Simplifier::shape_ok(Index f, const Vec3* q, const Vec3& extra_normal) const {
   // The hottest check of the run (every smoothing move): one normal, no square roots.
   const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]);
   if (!keeps_orientation(n, m_.face_area_normal(f))) return false;
-  // Reference: the corners' foot normals (plus the merged vertex's for a collapse).
-  Vec3 r = extra_normal;
-  double lowest = std::numeric_limits<double>::infinity();
-  for (Index k = 0; k < 4; ++k) {
-    const Vec3& c = foot_normal_[m_.vertex(f, k)];
-    r += c;
-    lowest = std::min(lowest, c.dot(n));
-  }
-  const double cos_r = n.dot(r);  // the angle to the reference must stay below acos(0.2)
-  if (cos_r < 0 || cos_r * cos_r < 0.04 * n.squaredNorm() * r.squaredNorm()) return false;
-  // A corner where the face stands steep on M0 (or faces away) means the face spans a
-  // sharp fold (a wing's edge): the sum of the corner normals can still agree while
-  // the surface under the face's middle faces the other way. Rare, so the
-  // closest-point query is affordable here.
-  if (lowest < 0.2 * n.norm()) {
-    const SurfacePoint mid = ref_.closest(0.25 * (q[0] + q[1] + q[2] + q[3]));
-    if (mid.found() && ref_.normal_at(mid).dot(n) < 0) return false;
-  }
+  if (!follows_reference(n, m_.face_vertices(f), q, extra_normal)) return false;
   if (quad_is_convex(q[0], q[1], q[2], q[3], n)) return true;
   const auto c = m_.face_vertices(f);
   return !quad_is_convex(m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3]));
@@ -262,11 +271,9 @@ void Simplifier::add_faces_around(Index v, std::vector<Index>& faces) {
 }
 
 bool Simplifier::rotation_follows_reference(Index h, Rotation r) const {
-  for (const auto& q : rotated_faces(m_, h, r)) {
-    const Vec3 n = quad_normal(m_.position(q[0]), m_.position(q[1]), m_.position(q[2]), m_.position(q[3]));
-    Vec3 ref = Vec3::Zero();
-    for (Index v : q) ref += foot_normal_[v];
-    if (n.normalized().dot(ref.normalized()) < 0.2) return false;
+  for (const auto& c : rotated_faces(m_, h, r)) {
+    const Vec3 q[4] = {m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3])};
+    if (!follows_reference(quad_normal(q[0], q[1], q[2], q[3]), c, q, Vec3::Zero())) return false;
   }
   return true;
 }
