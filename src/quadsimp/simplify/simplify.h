@@ -23,9 +23,9 @@ struct SimplifyOptions {
   const Fitmaps* fitmaps = nullptr;
   //! In adaptive mode, a face radius must stay at most F_M / m_factor.
   double m_factor = 1.0;
-  //! In adaptive mode F_S is clamped to its [q, 1-q] quantiles in the priority, which
-  //! bounds the size ratio between the finest and the coarsest parts (0: no clamp).
-  //! Unclamped, thin parts (the bunny's ears) took most of the budget and the rest grew
+  //! In adaptive mode F_S is clamped to its [q, 1-q] quantiles in the priority and in the
+  //! smoothing's target sizes, which bounds the size ratio between the finest and the
+  //! coarsest parts (0: no clamp). Unclamped, thin parts (the bunny's ears) took most of the budget and the rest grew
   //! huge faces: RMS distance 3x the uniform one at the same count. Measured at the
   //! paper's Table 2 counts, 0.3 gave the lowest RMS (bench/RESULTS.md).
   double s_percentiles = 0.3;
