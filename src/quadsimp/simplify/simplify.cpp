@@ -391,7 +391,7 @@ bool Simplifier::moved_faces_ok(Index v, const Vec3& p) const {
 // rest undid the adaptivity (bump test: faces 0.093 on the bump vs 0.092 on the flat
 // part); one mu for all took the RMS gain over uniform at automatic halting from 17% to
 // 9% (bunny), 22% to 5% (gargoyle), 28% to 14% (armadillo), with edges down to 0.02 mu
-// in the transitions. Border vertices keep mu.
+// in the transitions.
 void Simplifier::smooth_vertex(Index v) {
   const Vec3 p = m_.position(v);
   const bool border = m_.is_border_vertex(v);
@@ -408,10 +408,11 @@ void Simplifier::smooth_vertex(Index v) {
     const Vec3 ta = (p - a).normalized(), tb = (b - p).normalized();
     if (m_.valence(v) <= 2 || ta.dot(tb) < std::cos(M_PI / 4)) return;  // corners stay
     Vec3 x = Vec3::Zero();
-    for (const Vec3& e : {a, b}) {
+    for (const Index i : {ia, ib}) {
+      const Vec3& e = m_.position(i);
       const Vec3 d = p - e;
       const double l = d.norm();
-      x += 0.5 * (l > 1e-30 ? Vec3(e + mu_ * d / l) : p);
+      x += 0.5 * (l > 1e-30 ? Vec3(e + rest_length(v, i) * d / l) : p);
     }
     const Vec3 t = (b - a).normalized();
     target = p + (x - p).dot(t) * t;
