@@ -97,6 +97,23 @@ TEST(QuadMesh, hole_has_inner_border_loop) {
   }
 }
 
+TEST(QuadMesh, border_in_arrives_on_the_border) {
+  // Outer corners (one face), outer edge vertices (two) and hole corners (three faces).
+  QuadMesh m = grid_with_hole(3);
+  int seen = 0;
+  for (Index v = 0; v < m.vertex_capacity(); ++v) {
+    if (!m.is_border_vertex(v)) continue;
+    const Index h = m.border_in(v);
+    EXPECT_TRUE(m.is_border_halfedge(h)) << v;
+    EXPECT_EQ(m.to(h), v);
+    EXPECT_NE(h, m.out(v));
+    // The border loop continues: out(v) starts where h ends.
+    EXPECT_EQ(m.from(m.out(v)), m.to(h));
+    ++seen;
+  }
+  EXPECT_EQ(seen, 16);
+}
+
 TEST(QuadMesh, from_faces_refuses_bad_connectivity) {
   std::vector<Vec3> p(8, Vec3::Zero());
   // Three quads on one edge.

@@ -62,6 +62,12 @@ class QuadMesh {
   bool is_border_vertex(Index v) const { return twin_[out_[v]] == kNone; }
   //! True when f has at least one border edge.
   bool is_border_face(Index f) const;
+  //! The border half-edge arriving at border vertex v (the one out(v) does not reach).
+  Index border_in(Index v) const {
+    Index h = out_[v];
+    for (Index t = twin_[prev(h)]; t != kNone; t = twin_[prev(t)]) h = t;
+    return prev(h);
+  }
 
   //! Number of edges incident to v (a border vertex counts its two border edges).
   int valence(Index v) const { return int(face_count_[v]) + (is_border_vertex(v) ? 1 : 0); }

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
 
 #include "quadsimp/mesh/quad_geometry.h"
@@ -63,7 +64,7 @@ class Simplifier {
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
   void coarsen_border();
   bool remove_border_vertex(Index b);
-  void after_change(const std::vector<Index>& touched);
+  void after_change(std::initializer_list<Index> touched);
   void add_faces_around(Index v, std::vector<Index>& faces);
   void rotate_in_region();
   bool try_rotate(Index h);
@@ -199,17 +200,16 @@ bool Simplifier::shape_ok(Index f, const Vec3* q, const Vec3& extra_normal) cons
   // The hottest check of the run (every smoothing move): one normal, no square roots.
   const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]);
   if (!keeps_orientation(n, m_.face_area_normal(f))) return false;
-  if (!follows_reference(n, m_.face_vertices(f), q, extra_normal)) return false;
-  if (quad_is_convex(q[0], q[1], q[2], q[3], n)) return true;
   const auto c = m_.face_vertices(f);
+  if (!follows_reference(n, c, q, extra_normal)) return false;
+  if (quad_is_convex(q[0], q[1], q[2], q[3], n)) return true;
   return !quad_is_convex(m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3]));
 }
 
 // Border vertices aim at valence 3, sharp border corners (turning by more than
 // 60 degrees) at 2.
 int Simplifier::target_valence_of_border(Index v) const {
-  Index h_in = m_.out(v);
-  m_.for_each_outgoing(v, [&](Index h) { h_in = QuadMesh::prev(h); });
+  const Index h_in = m_.border_in(v);
   const Vec3 p = m_.position(v);
   const Vec3 a = (p - m_.position(m_.to(m_.out(v)))).normalized(), b = (m_.position(m_.from(h_in)) - p).normalized();
   return a.dot(b) < 0.5 ? 2 : 3;
@@ -400,10 +400,7 @@ void Simplifier::smooth_vertex(Index v) {
   if (border) {
     if (opt_.preserve_boundary) return;
     // Along the border only: springs to the two border neighbours.
-    const Index h_out = m_.out(v);
-    Index h_in = h_out;
-    m_.for_each_outgoing(v, [&](Index h) { h_in = QuadMesh::prev(h); });
-    const Index ia = m_.to(h_out), ib = m_.from(h_in);
+    const Index ia = m_.to(m_.out(v)), ib = m_.from(m_.border_in(v));
     const Vec3 a = m_.position(ia), b = m_.position(ib);
     const Vec3 ta = (p - a).normalized(), tb = (b - p).normalized();
     if (m_.valence(v) <= 2 || ta.dot(tb) < std::cos(M_PI / 4)) return;  // corners stay
@@ -433,11 +430,9 @@ void Simplifier::smooth_vertex(Index v) {
     };
     m_.for_each_outgoing(v, [&](Index h) {
       // Per face: two edge springs (each edge is shared by two faces) and one diagonal.
-      const Vec3& e1 = m_.position(m_.to(h));
-      const Vec3& dg = m_.position(m_.to(QuadMesh::next(h)));
-      const Vec3& e2 = m_.position(m_.from(QuadMesh::prev(h)));
-      area_normal += (dg - p).cross(e2 - e1);
       const Index i1 = m_.to(h), id = m_.to(QuadMesh::next(h)), i2 = m_.from(QuadMesh::prev(h));
+      const Vec3 &e1 = m_.position(i1), &dg = m_.position(id), &e2 = m_.position(i2);
+      area_normal += (dg - p).cross(e2 - e1);
       spring(e1, rest_length(v, i1), 0.5);
       spring(e2, rest_length(v, i2), 0.5);
       spring(dg, kSqrt2 * rest_length(v, id), 1.0);
@@ -512,9 +507,7 @@ void Simplifier::coarsen_border() {
 }
 
 bool Simplifier::remove_border_vertex(Index b) {
-  const Index out = m_.out(b);  // b -> c, border
-  Index ha = out;               // a -> b, border (the prev of b's last outgoing face half-edge)
-  m_.for_each_outgoing(b, [&](Index h) { ha = QuadMesh::prev(h); });
+  const Index out = m_.out(b), ha = m_.border_in(b);  // b -> c and a -> b, both on the border
   const Index a = m_.from(ha), c = m_.to(out);
   const double ab = (m_.position(a) - m_.position(b)).norm(), bc = (m_.position(b) - m_.position(c)).norm();
   const int valence = m_.valence(b);
@@ -558,7 +551,7 @@ bool Simplifier::remove_border_vertex(Index b) {
 }
 
 // Cleaning, rotations, smoothing and requeueing around vertices an operation changed.
-void Simplifier::after_change(const std::vector<Index>& touched) {
+void Simplifier::after_change(std::initializer_list<Index> touched) {
   region_faces_.clear();
   work_.assign(touched.begin(), touched.end());
   CleanCounts cc;
