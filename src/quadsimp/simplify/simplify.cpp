@@ -82,12 +82,13 @@ class Simplifier {
   void rebuild_heap();
   double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n) const;
   double s_weight(Index f) const;
+  // F_S as the priority and the sizing use it: clamped to [s_lo, s_hi], and never 0.
+  double clamped_s(double s) const { return std::max(std::clamp(s, s_lo_, s_hi_), 1e-3 * s_mid_); }
   double blocked_share();
   void record_foot(Index v, const SurfacePoint& s) {
     foot_normal_[v] = ref_.normal_at(s);
     foot_face_[v] = s.face;
-    if (opt_.adaptive)  // F_S is 0 on planes: without a clamp, cap the size at 1000x
-      size_[v] = s_mid_ / std::max(std::clamp(ref_.interpolate(opt_.fitmaps->s, s), s_lo_, s_hi_), 1e-3 * s_mid_);
+    if (opt_.adaptive) size_[v] = s_mid_ / clamped_s(ref_.interpolate(opt_.fitmaps->s, s));
   }
   void update_mu();
   // Spring rest length between u and v, for an edge (diagonals: times sqrt(2)).
@@ -130,10 +131,11 @@ double norm_of_diagonal(const QuadMesh& m, Index f, Index k) {
 }
 
 double Simplifier::s_weight(Index f) const {
-  const double s = sample_fitmap(opt_.fitmaps->s, m_.face_centroid(f), m_.face_area_normal(f));
-  return std::clamp(s, s_lo_, s_hi_);
+  return clamped_s(sample_fitmap(opt_.fitmaps->s, m_.face_centroid(f), m_.face_area_normal(f)));
 }
 
+// A fitmap at p projected along n. Through the BVH: a walk from a corner's foot to the
+// centre of an adaptive face crosses too many triangles (measured: no faster).
 double Simplifier::sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n) const {
   const SurfacePoint s = ref_.project(p, n, 4 * mu_);
   return s.found() ? ref_.interpolate(field, s) : 0.0;
