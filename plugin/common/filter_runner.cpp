@@ -39,7 +39,8 @@ QuadMesh run_simplification(MeshFile layer, const std::string& name, const Simpl
   const auto t0 = std::chrono::steady_clock::now();
   Input in = prepare_input(std::move(layer), name, {}, log_into(o));
   describe_input(in, name, o);
-  const SimplifyReport r = simplify_input(in, params, progress);
+  const ReferenceSurface ref(std::move(in.reference));
+  const SimplifyReport r = simplify_input(in, ref, params, progress);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const QuadQuality q = quad_quality(in.quads);
   o.log.push_back(format("quad mesh simplification: %g -> %g quads in %.2f s (%g collapses, ", r.initial_faces,

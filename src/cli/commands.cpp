@@ -122,12 +122,12 @@ int run_simplify(const SimplifyArgs& a) {
   try {
     const auto t0 = std::chrono::steady_clock::now();
     Input in = load_input(a.input, {}, stderr_log(a.quiet));
-    const SimplifyReport r = simplify_input(in, params, progress_bar(a.quiet));
+    const ReferenceSurface ref(std::move(in.reference));
+    const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
     write_quad_mesh(a.output, in.quads);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads);
     if (a.json || a.stats) {
-      const ReferenceSurface ref(std::move(in.reference));
       const SurfaceDistance d = surface_distance(in.quads, ref, a.samples);
       const QuadQuality full = quad_quality(in.quads, &ref);
       if (a.json) {

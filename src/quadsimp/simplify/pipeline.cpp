@@ -19,9 +19,9 @@ std::string check_params(const SimplifyParams& p) {
   return {};
 }
 
-SimplifyReport simplify_input(Input& in, const SimplifyParams& p, const ProgressFn& progress) {
+SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const SimplifyParams& p,
+                              const ProgressFn& progress) {
   if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
-  const ReferenceSurface ref(in.reference);
   SimplifyOptions opt;
   opt.target_faces = p.target_faces;
   opt.preserve_boundary = p.preserve_boundary;

@@ -21,9 +21,11 @@ struct SimplifyParams {
 //! Checks a parameter combination; returns "" or the reason it is refused.
 std::string check_params(const SimplifyParams& params);
 
-//! The whole job on prepared input: reference surface, fitmaps in adaptive mode, then
-//! simplify(). `in.quads` is simplified in place. \throw std::invalid_argument for
+//! The whole job on prepared input: fitmaps on `ref` in adaptive mode, then simplify().
+//! `ref` is the reference surface of `in.reference` (the caller keeps it for measuring
+//! the result). `in.quads` is simplified in place. \throw std::invalid_argument for
 //! parameters check_params() refuses; Cancelled when `progress` says stop.
-SimplifyReport simplify_input(Input& in, const SimplifyParams& params, const ProgressFn& progress = {});
+SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const SimplifyParams& params,
+                              const ProgressFn& progress = {});
 
 }  // namespace qs
