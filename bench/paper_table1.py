@@ -56,14 +56,19 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def main():
+def parse_args(doc, models):
+    """The options both table scripts take."""
     here = os.path.dirname(os.path.abspath(__file__))
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quadsimp", default=os.path.join(here, "..", "build", "src", "quadsimp"))
     ap.add_argument("--datasets", default=os.path.join(here, "..", "..", "shared", "datasets"))
     ap.add_argument("--samples", type=int, default=1000000, help="distance samples per surface")
-    ap.add_argument("--models", nargs="*", default=list(PAPER))
-    args = ap.parse_args()
+    ap.add_argument("--models", nargs="*", default=models)
+    return ap.parse_args()
+
+
+def main():
+    args = parse_args(__doc__, list(PAPER))
 
     print(f"Machine: {machine()}; single-threaded simplification, distances sampled with "
           f"{args.samples} points per surface plus vertices.\n")

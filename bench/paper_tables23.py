@@ -8,12 +8,11 @@ with the paper's Table 2 face counts as targets, each beside uniform at the same
 
     python3 bench/paper_tables23.py [--quadsimp build/src/quadsimp] [--datasets ../shared/datasets]
 """
-import argparse
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from paper_table1 import machine, run  # noqa: E402
+from paper_table1 import machine, parse_args, run  # noqa: E402
 
 # model -> (adaptive: faces, time, val, reg, hmin, hmax, dist; uniform: same)
 PAPER = {
@@ -41,13 +40,7 @@ def gain(a, u, key):
 
 
 def main():
-    here = os.path.dirname(os.path.abspath(__file__))
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quadsimp", default=os.path.join(here, "..", "build", "src", "quadsimp"))
-    ap.add_argument("--datasets", default=os.path.join(here, "..", "..", "shared", "datasets"))
-    ap.add_argument("--samples", type=int, default=1000000)
-    ap.add_argument("--models", nargs="*", default=list(PAPER))
-    args = ap.parse_args()
+    args = parse_args(__doc__, list(PAPER))
 
     print(f"Machine: {machine()}; fitmaps use both cores, simplification one. Distances sampled with "
           f"{args.samples} points per surface plus vertices.\n")
