@@ -200,6 +200,10 @@ TEST(ReferenceSurface, project_near_walks_to_the_same_hit) {
   TriMesh s = tri_sphere(30, 40);
   clean(s);
   const ReferenceSurface ref(s);
+  // Coordinate fields: barycentric lookup at a hit must give back the hit point.
+  std::vector<float> coord[3];
+  for (int c = 0; c < 3; ++c)
+    for (Index v = 0; v < s.n_vertices(); ++v) coord[c].push_back(float(s.positions[v][c]));
   int same_face = 0;
   for (int i = 0; i < 50; ++i) {
     const Vec3 dir = Vec3(std::cos(i * 0.7) * std::sin(i * 0.3 + 0.2), std::sin(i * 0.7) * std::sin(i * 0.3 + 0.2),
@@ -215,6 +219,7 @@ TEST(ReferenceSurface, project_near_walks_to_the_same_hit) {
       ASSERT_TRUE(hit.found());
       EXPECT_LT((hit.point - expect.point).norm(), 1e-6);  // Embree intersects in single precision
       EXPECT_NEAR(hit.distance, expect.distance, 1e-6);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(ref.interpolate(coord[c], hit), hit.point[c], 1e-6);
       same_face += start == near_start && hit.face == expect.face;
     }
   }
