@@ -10,6 +10,7 @@
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/tri_to_quad.h"
 #include "quadsimp/io/load_input.h"
+#include "quadsimp/metrics/metrics.h"
 
 using namespace qs;
 using namespace qs::fixtures;
@@ -227,4 +228,9 @@ TEST(Adaptive, faces_are_smaller_around_a_bump) {
   ASSERT_GT(n_near, 0);
   ASSERT_GT(n_far, 0);
   EXPECT_LT(near / n_near, 0.8 * far / n_far) << "faces on the bump should be smaller";
+  // The sized smoothing keeps the quads sound across the size change (with sizes
+  // unbounded on the flat part: 71% regular and a smallest edge of 0.001 mu).
+  const QuadQuality quality = quad_quality(q);
+  EXPECT_GT(quality.regular_percent, 75.0);
+  EXPECT_GT(quality.homeometry_min, 0.01);
 }

@@ -82,13 +82,18 @@ class Simplifier {
   void rebuild_heap();
   double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n) const;
   double s_weight(Index f) const;
-  // F_S as the priority and the sizing use it: clamped to [s_lo, s_hi], and never 0.
-  double clamped_s(double s) const { return std::max(std::clamp(s, s_lo_, s_hi_), 1e-3 * s_mid_); }
+  // F_S as the priority and the sizing use it: clamped to [s_lo, s_hi].
+  double clamped_s(double s) const { return std::clamp(s, s_lo_, s_hi_); }
+  // Spring size relative to the rest: s_mid / F_S, and within [1/2, 2]. The quantile clamp
+  // alone does not bound it where F_S is rounding noise (exactly flat parts): ratios of
+  // noise left the bump test with 71% regular vertices and 2.3x the RMS of a single mu.
+  // On the scans the quantiles are within 1.5x of each other and this never binds.
+  double target_size(double s) const { return std::clamp(s_mid_ / std::max(clamped_s(s), 1e-30), 0.5, 2.0); }
   double blocked_share();
   void record_foot(Index v, const SurfacePoint& s) {
     foot_normal_[v] = ref_.normal_at(s);
     foot_face_[v] = s.face;
-    if (opt_.adaptive) size_[v] = s_mid_ / clamped_s(ref_.interpolate(opt_.fitmaps->s, s));
+    if (opt_.adaptive) size_[v] = target_size(ref_.interpolate(opt_.fitmaps->s, s));
   }
   void update_mu();
   // Spring rest length between u and v, for an edge (diagonals: times sqrt(2)).
