@@ -9,6 +9,7 @@ Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions
   Input in;
   in.reference = triangles_of(file);
   in.clean = clean(in.reference, name, log);
+  sort_spatially(in.reference);
   in.was_pure_quad = file.is_pure_quad();
   if (in.was_pure_quad) {
     try {

