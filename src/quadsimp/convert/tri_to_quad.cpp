@@ -39,6 +39,7 @@ Index fix_parity(TriMesh& t) {
   const Index nc = face_components(t, comp);
   std::vector<Index> count(nc, 0);
   for (Index c : comp) ++count[c];
+  if (std::all_of(count.begin(), count.end(), [](Index n) { return n % 2 == 0; })) return 0;
   const auto adj = triangle_adjacency(t);
   std::vector<std::pair<double, Index>> best(nc, {-1.0, kNone});  // (length, 3*face+k)
   for (Index f = 0; f < t.n_faces(); ++f)
