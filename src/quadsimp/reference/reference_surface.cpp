@@ -106,6 +106,14 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   for (Vec3& n : vertex_normals_) n.normalize();
   mean_edge_ = mesh_.n_faces() ? edge_sum / (3.0 * mesh_.n_faces()) : 0.0;
   adjacency_ = triangle_adjacency(mesh_);
+  border_out_.assign(mesh_.n_vertices(), kNone);
+  border_in_.assign(mesh_.n_vertices(), kNone);
+  for (Index f = 0; f < mesh_.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k)
+      if (adjacency_[f][k] == kNone) {
+        border_out_[mesh_.faces[f][k]] = 3 * f + k;
+        border_in_[mesh_.faces[f][(k + 1) % 3]] = 3 * f + k;
+      }
 
   bvh_->device = rtcNewDevice("threads=0");
   if (!bvh_->device) throw std::runtime_error("Embree: cannot create a device");
@@ -231,6 +239,47 @@ SurfacePoint ReferenceSurface::project_near(Index start, const Vec3& p, const Ve
     }
   }
   return project(p, dir, max_dist);
+}
+
+SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, double reach) const {
+  SurfacePoint best;
+  if (start >= mesh_.n_faces()) return best;
+  Index first = kNone;  // a border edge at a corner of `start`
+  for (Index v : mesh_.faces[start])
+    if (border_out_[v] != kNone) first = border_out_[v];
+  if (first == kNone) return best;
+  const auto& P = mesh_.positions;
+  auto corner = [&](Index e, Index i) { return mesh_.faces[e / 3][(e % 3 + i) % 3]; };
+  auto visit = [&](Index e) {  // closest point of border edge e; returns its length
+    const Vec3 &a = P[corner(e, 0)], &b = P[corner(e, 1)];
+    const Vec3 ab = b - a;
+    const double len2 = ab.squaredNorm();
+    const double s = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    const Vec3 x = a + s * ab;
+    const double d = (x - p).norm();
+    if (!best.found() || d < best.distance) {
+      double w[3] = {0, 0, 0};
+      w[e % 3] = 1 - s;
+      w[(e % 3 + 1) % 3] = s;
+      best = SurfacePoint{e / 3, w[1], w[2], x, d};
+    }
+    return std::sqrt(len2);
+  };
+  // Forward from `first`, then backward; each stops at `reach`, after kMaxEdges edges
+  // (a guard) or where a closed loop comes back to `first`.
+  constexpr int kMaxEdges = 256;
+  const double first_length = visit(first);
+  double walked = first_length;
+  int steps = 0;
+  for (Index e = border_out_[corner(first, 1)]; e != kNone && e != first && walked < reach && steps < kMaxEdges;
+       e = border_out_[corner(e, 1)], ++steps)
+    walked += visit(e);
+  walked = first_length;
+  steps = 0;
+  for (Index e = border_in_[corner(first, 0)]; e != kNone && e != first && walked < reach && steps < kMaxEdges;
+       e = border_in_[corner(e, 0)], ++steps)
+    walked += visit(e);
+  return best;
 }
 
 double ReferenceSurface::interpolate(const std::vector<float>& field, const SurfacePoint& s) const {

@@ -53,6 +53,13 @@ class ReferenceSurface {
   SurfacePoint closest(const Vec3& p, double max_dist = std::numeric_limits<double>::infinity(),
                        const Vec3& normal = Vec3::Zero()) const;
 
+  //! Closest point to p on M0's border, searched along the border within `reach`
+  //! (length along the border) of the border corners of triangle `start`; not found
+  //! when `start` touches no border. Border vertices slide along the border with it:
+  //! the closest point on the whole surface leaves the border wherever the border
+  //! bends out of its tangent plane.
+  SurfacePoint closest_on_border(Index start, const Vec3& p, double reach) const;
+
   //! Linear interpolation of a per-vertex field at a surface point.
   double interpolate(const std::vector<float>& field, const SurfacePoint& s) const;
   //! Interpolated (area-weighted) vertex normal at a surface point.
@@ -62,6 +69,9 @@ class ReferenceSurface {
   TriMesh mesh_;
   std::vector<Vec3> normals_, vertex_normals_;
   std::vector<std::array<Index, 3>> adjacency_;  // for project_near()
+  // Per vertex, the border edge leaving it and the one arriving at it (3 * triangle +
+  // corner, the edge running from that corner to the next), or kNone.
+  std::vector<Index> border_out_, border_in_;
   double diagonal_ = 0, mean_edge_ = 0;
   struct Bvh;
   std::unique_ptr<Bvh> bvh_;
