@@ -54,9 +54,10 @@ Index count_components(const QuadMesh& m) {
 }
 
 // Simplify to `target` and check what every result must satisfy.
-SimplifyReport run_and_check(Case& c, Index target, const ReferenceSurface& ref) {
+SimplifyReport run_and_check(Case& c, Index target, const ReferenceSurface& ref, int passes = 2) {
   SimplifyOptions opt;
   opt.target_faces = target;
+  opt.passes = passes;
   const SimplifyReport r = simplify(c.quads, ref, opt);
   validate(c.quads);
   EXPECT_LE(c.quads.n_faces(), target);
@@ -230,16 +231,23 @@ TEST(Simplify, bunny_from_glmark2) {
 TEST(Simplify, no_quad_spans_a_fold_facing_away) {
   // Thin, sharply folded parts (the gargoyle's wings, the armadillo's fingers and ears):
   // without the fold check in follows_reference() these runs end with 2 and 3 quads
-  // whose middle faces against the surface under it (run_and_check counts them).
+  // whose middle faces against the surface under it (run_and_check counts them). The
+  // single-pass run (--fast) ended with one when the check waited for a corner at 60
+  // degrees: that quad stood at 46-54 degrees on every corner.
+  struct Run {
+    const char* name;
+    Index target;
+    int passes;
+  };
   int ran = 0;
-  for (const auto& [name, target] : {std::pair<const char*, Index>{"gargoyle", 1000}, {"armadillo", 3000}}) {
-    const std::string p = shared_dataset(name);
+  for (const Run& r : {Run{"gargoyle", 1000, 2}, Run{"armadillo", 3000, 2}, Run{"gargoyle", 2000, 1}}) {
+    const std::string p = shared_dataset(r.name);
     if (p.empty()) continue;
-    SCOPED_TRACE(name);
+    SCOPED_TRACE(std::string(r.name) + " " + std::to_string(r.target));
     Input in = load_input(p);
     Case c{in.reference, std::move(in.quads)};
     const ReferenceSurface ref(c.tri);
-    run_and_check(c, target, ref);
+    run_and_check(c, r.target, ref, r.passes);
     ++ran;
   }
   if (ran == 0) GTEST_SKIP() << "../shared/datasets not found";
