@@ -57,7 +57,7 @@ struct SimplifyOptions {
   //! one pass with one sweep (0: full passes throughout; no effect without a target).
   //! Ours: those vertices are smoothed again by the many collapses still to come. On
   //! Table 1 the mean share of regular vertices moved from 83.5% to 82.9% (no row below
-  //! 81%) and bunny.obj to 5K took 45% less time (bench/RESULTS.md).
+  //! 81%) and bunny.obj to 5K took about 40% less time (bench/RESULTS.md).
   double fine_phase = 2.0;
   //! Spring-smoothing sweeps over the whole mesh before the first collapse. Ours: where
   //! the input is coarser than elsewhere, no collapse may reach a region before the
