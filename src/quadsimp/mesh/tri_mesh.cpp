@@ -11,24 +11,6 @@
 namespace qs {
 namespace {
 
-struct EdgeFace {
-  std::uint64_t key;  // (min vertex, max vertex)
-  Index face;
-  bool operator<(const EdgeFace& o) const { return key < o.key || (key == o.key && face < o.face); }
-};
-
-std::vector<EdgeFace> sorted_edges(const TriMesh& m) {
-  std::vector<EdgeFace> e;
-  e.reserve(3 * m.faces.size());
-  for (Index f = 0; f < m.n_faces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
-      e.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), f});
-    }
-  std::sort(e.begin(), e.end());
-  return e;
-}
-
 // True when face f walks edge a->b in that direction.
 bool has_directed(const std::array<Index, 3>& t, Index a, Index b) {
   for (int k = 0; k < 3; ++k)
@@ -136,13 +118,20 @@ void remove_degenerate_and_duplicate_faces(TriMesh& m, CleanReport& r) {
     else ++r.removed_duplicate_faces;
 }
 
-void check_edge_manifold(const TriMesh& m, const std::vector<EdgeFace>& e, const std::string& src) {
-  for (std::size_t i = 0; i + 2 < e.size(); ++i)
-    if (e[i].key == e[i + 2].key)
-      throw InvalidInput(src + ": edge " + std::to_string(e[i].key >> 32) + "-" +
-                         std::to_string(e[i].key & 0xffffffffu) +
-                         " is shared by more than two triangles (non-manifold edge)");
-  (void)m;
+void check_edge_manifold(const TriMesh& m, const std::string& src) {
+  const CornersAround around = corners_around(m);
+  for (Index f = 0; f < m.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k) {
+      const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
+      int faces = 0;  // around a, with b too
+      for (Index i = around.start[a]; i < around.start[a + 1]; ++i) {
+        const auto& t = m.faces[around.corner[i] / 3];
+        faces += t[0] == b || t[1] == b || t[2] == b;
+      }
+      if (faces > 2)
+        throw InvalidInput(src + ": edge " + std::to_string(std::min(a, b)) + "-" + std::to_string(std::max(a, b)) +
+                           " is shared by more than two triangles (non-manifold edge)");
+    }
 }
 
 // Flips faces so that every manifold edge is walked in opposite directions by its
@@ -306,10 +295,11 @@ double bbox_diagonal(const std::vector<Vec3>& positions) {
 }
 
 Index face_components(const TriMesh& mesh, std::vector<Index>& component) {
-  const auto e = sorted_edges(mesh);
+  const auto adj = triangle_adjacency(mesh);
   UnionFind uf(mesh.n_faces());
-  for (std::size_t i = 0; i + 1 < e.size(); ++i)
-    if (e[i].key == e[i + 1].key) uf.unite(e[i].face, e[i + 1].face);
+  for (Index f = 0; f < mesh.n_faces(); ++f)
+    for (Index g : adj[f])
+      if (g != kNone) uf.unite(f, g);
   component.assign(mesh.n_faces(), kNone);
   std::vector<Index> id(mesh.n_faces(), kNone);
   Index n = 0;
@@ -340,8 +330,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
   merge_duplicate_vertices(m, r);
   remove_degenerate_and_duplicate_faces(m, r);
   if (m.faces.empty()) throw InvalidInput(src + ": every face is degenerate (zero area)");
-  auto edges = sorted_edges(m);
-  check_edge_manifold(m, edges, src);
+  check_edge_manifold(m, src);
   orient(m, r, src);
   split_nonmanifold_vertices(m, r);
   remove_unreferenced(m, r);

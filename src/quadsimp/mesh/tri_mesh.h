@@ -56,6 +56,7 @@ double bbox_diagonal(const std::vector<Vec3>& positions);
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& mesh);
 
 //! Connected component id per face (faces sharing an edge), and their count.
+//! \pre edge-manifold (see clean()).
 Index face_components(const TriMesh& mesh, std::vector<Index>& component);
 
 }  // namespace qs
