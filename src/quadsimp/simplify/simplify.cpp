@@ -583,7 +583,8 @@ void Simplifier::after_change(std::initializer_list<Index> touched) {
   rep_.singlets += cc.singlets;
   for (Index x : touched) add_faces_around(x, region_faces_);
   if (opt_.rotations) rotate_in_region();
-  const bool fine = opt_.fine_phase > 0 && opt_.target_faces > 0 && m_.n_faces() > opt_.fine_phase * opt_.target_faces;
+  const bool fine =  // see SimplifyOptions::fine_phase
+      opt_.fine_phase > 0 && opt_.target_faces > 0 && m_.n_faces() > opt_.fine_phase * opt_.target_faces;
   smooth_region(fine ? 1 : opt_.smoothing_sweeps);
   for (int pass = 1; pass < (fine ? 1 : opt_.passes); ++pass) {
     // Smoothing moved the zone: rotations the fold and convexity checks refused may
