@@ -6,18 +6,6 @@
 #include "quadsimp/ops/local_rewrite.h"
 
 namespace qs {
-namespace {
-
-// The other end of the border edge that leaves v (v -> next on the border) and of the
-// one that arrives at v.
-Index border_next(const QuadMesh& m, Index v) { return m.to(m.out(v)); }
-Index border_prev(const QuadMesh& m, Index v) {
-  Index last = m.out(v);
-  m.for_each_outgoing(v, [&](Index h) { last = h; });
-  return m.from(QuadMesh::prev(last));
-}
-
-}  // namespace
 
 bool can_collapse_border_ear(const QuadMesh& m, Index f, Index k) {
   if (f >= m.face_capacity() || !m.is_face_live(f)) return false;
@@ -28,7 +16,8 @@ bool can_collapse_border_ear(const QuadMesh& m, Index f, Index k) {
   if (m.twin(ha) != kNone || m.twin(hb) != kNone) return false;  // b's only face is f
   if (m.twin(hc) == kNone || m.twin(hd) == kNone) return false;
   const Index a = m.from(ha), b = m.from(hb), c = m.from(hc), d = m.from(hd);
-  const Index x = border_prev(m, a), y = border_next(m, c);
+  // The border neighbours beyond a and c.
+  const Index x = m.from(m.border_in(a)), y = m.to(m.out(c));
   if (x == c || y == a || x == y) return false;  // the loop would shrink below three edges
   return detail::link_condition(m, a, c, b, d);
 }
