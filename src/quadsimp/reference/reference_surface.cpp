@@ -265,20 +265,18 @@ SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, dou
     }
     return std::sqrt(len2);
   };
-  // Forward from `first`, then backward; each stops at `reach`, after kMaxEdges edges
-  // (a guard) or where a closed loop comes back to `first`.
+  // Forward from `first` (each edge's end starts the next), then backward (each edge's
+  // start ends the previous); each stops at `reach`, after kMaxEdges edges (a guard) or
+  // where a closed loop comes back to `first`.
   constexpr int kMaxEdges = 256;
   const double first_length = visit(first);
-  double walked = first_length;
-  int steps = 0;
-  for (Index e = border_out_[corner(first, 1)]; e != kNone && e != first && walked < reach && steps < kMaxEdges;
-       e = border_out_[corner(e, 1)], ++steps)
-    walked += visit(e);
-  walked = first_length;
-  steps = 0;
-  for (Index e = border_in_[corner(first, 0)]; e != kNone && e != first && walked < reach && steps < kMaxEdges;
-       e = border_in_[corner(e, 0)], ++steps)
-    walked += visit(e);
+  for (const bool forward : {true, false}) {
+    auto step = [&](Index e) { return forward ? border_out_[corner(e, 1)] : border_in_[corner(e, 0)]; };
+    double walked = first_length;
+    int steps = 0;
+    for (Index e = step(first); e != kNone && e != first && walked < reach && steps < kMaxEdges; e = step(e), ++steps)
+      walked += visit(e);
+  }
   return best;
 }
 
