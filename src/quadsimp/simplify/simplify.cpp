@@ -131,6 +131,14 @@ class Simplifier {
   double area_ = 0;  // of the mesh at the start
 };
 
+// Where a spring of length `rest` from q would put p: on the sphere of that radius
+// around q, in p's direction (p itself when they coincide).
+Vec3 spring_point(const Vec3& p, const Vec3& q, double rest) {
+  const Vec3 d = p - q;
+  const double l = d.norm();
+  return l > 1e-30 ? Vec3(q + rest * d / l) : p;
+}
+
 double norm_of_diagonal(const QuadMesh& m, Index f, Index k) {
   return (m.position(m.vertex(f, k)) - m.position(m.vertex(f, k + 2))).norm();
 }
@@ -426,13 +434,7 @@ void Simplifier::smooth_vertex(Index v) {
     const Vec3 a = m_.position(ia), b = m_.position(ib);
     const Vec3 ta = (p - a).normalized(), tb = (b - p).normalized();
     if (m_.valence(v) <= 2 || ta.dot(tb) < std::cos(M_PI / 4)) return;  // corners stay
-    Vec3 x = Vec3::Zero();
-    for (const Index i : {ia, ib}) {
-      const Vec3& e = m_.position(i);
-      const Vec3 d = p - e;
-      const double l = d.norm();
-      x += 0.5 * (l > 1e-30 ? Vec3(e + rest_length(v, i) * d / l) : p);
-    }
+    const Vec3 x = 0.5 * (spring_point(p, a, rest_length(v, ia)) + spring_point(p, b, rest_length(v, ib)));
     const Vec3 t = (b - a).normalized();
     target = p + (x - p).dot(t) * t;
     if ((target - p).squaredNorm() < 1e-4 * mu_ * mu_) return;
@@ -446,9 +448,7 @@ void Simplifier::smooth_vertex(Index v) {
     Vec3 sum = Vec3::Zero(), area_normal = Vec3::Zero();
     double w = 0;
     auto spring = [&](const Vec3& q, double rest, double weight) {
-      const Vec3 d = p - q;
-      const double l = d.norm();
-      sum += weight * (l > 1e-30 ? Vec3(q + rest * d / l) : p);
+      sum += weight * spring_point(p, q, rest);
       w += weight;
     };
     m_.for_each_outgoing(v, [&](Index h) {
