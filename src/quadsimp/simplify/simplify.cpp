@@ -388,14 +388,16 @@ void Simplifier::rotate_in_region() {
 // Moving v to p keeps its faces sound (shape_ok) and brings it no closer to an edge
 // neighbour already nearer than a quarter of their rest length. Convexity alone let
 // the springs of a distorted fan drop a vertex next to a neighbour (adaptive bump
-// test: an edge of 0.005 mu that no later move undid).
+// test: an edge of 0.005 mu that no later move undid). The fan's outgoing edges reach
+// every neighbour but, at a border vertex, the one across the incoming border edge:
+// there the border springs themselves keep it at rest length.
 bool Simplifier::moved_faces_ok(Index v, const Vec3& p) const {
   bool ok = true;
   const Vec3& before = m_.position(v);
   m_.for_each_outgoing(v, [&](Index h) {
     if (!ok) return;
     const Index f = QuadMesh::face(h), e = m_.to(h);
-    const double near = 0.0625 * rest_length(v, e) * rest_length(v, e);
+    const double rest = rest_length(v, e), near = 0.0625 * rest * rest;
     const double after2 = (p - m_.position(e)).squaredNorm();
     if (after2 < near && after2 < (before - m_.position(e)).squaredNorm()) {
       ok = false;
