@@ -115,8 +115,8 @@ TEST(Clean, refuses_unusable_input_with_one_sentence) {
 TEST(Clean, components_are_counted) {
   TriMesh t = two_spheres();
   std::vector<Index> c;
-  EXPECT_EQ(face_components(t, c), 2u);
-  EXPECT_EQ(face_components(tri_torus(8, 6), c), 1u);
+  EXPECT_EQ(face_components(triangle_adjacency(t), c), 2u);
+  EXPECT_EQ(face_components(triangle_adjacency(tri_torus(8, 6)), c), 1u);
 }
 
 // Same triangles (as position triples, orientation kept), neighbours close in memory.

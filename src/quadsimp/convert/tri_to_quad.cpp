@@ -33,14 +33,14 @@ double quad_quality(const std::vector<Vec3>& p, const std::array<Index, 4>& q) {
   return s / 4;
 }
 
-// Splits the longest border edge of every component with an odd triangle count.
-Index fix_parity(TriMesh& t) {
+// Splits the longest border edge of every component with an odd triangle count;
+// `adj` (t's triangle adjacency) is brought up to date when it does.
+Index fix_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj) {
   std::vector<Index> comp;
-  const Index nc = face_components(t, comp);
+  const Index nc = face_components(adj, comp);
   std::vector<Index> count(nc, 0);
   for (Index c : comp) ++count[c];
   if (std::all_of(count.begin(), count.end(), [](Index n) { return n % 2 == 0; })) return 0;
-  const auto adj = triangle_adjacency(t);
   std::vector<std::pair<double, Index>> best(nc, {-1.0, kNone});  // (length, 3*face+k)
   for (Index f = 0; f < t.n_faces(); ++f)
     for (Index k = 0; k < 3; ++k) {
@@ -62,6 +62,7 @@ Index fix_parity(TriMesh& t) {
     t.faces.push_back({m, b, apex});
     ++splits;
   }
+  adj = triangle_adjacency(t);
   return splits;
 }
 
@@ -145,7 +146,7 @@ void split_border_and_pair(TriMesh& t, std::vector<std::array<Index, 3>>& adj, s
 }
 
 // One refinement step of a mixed mesh: each quad -> 4 quads, each triangle -> 3.
-QuadMesh refine_mixed(const TriMesh& t, const std::vector<Index>& mate) {
+QuadMesh refine_mixed(const TriMesh& t, const std::vector<std::array<Index, 3>>& adj, const std::vector<Index>& mate) {
   std::vector<Vec3> pos = t.positions;
   std::map<std::pair<Index, Index>, Index> mid;
   auto midpoint = [&](Index a, Index b) {
@@ -160,7 +161,6 @@ QuadMesh refine_mixed(const TriMesh& t, const std::vector<Index>& mate) {
       quads.push_back({poly[k], midpoint(poly[k], poly[(k + 1) % n]), centre,
                        midpoint(poly[(k + n - 1) % n], poly[k])});
   };
-  const auto adj = triangle_adjacency(t);
   for (Index f = 0; f < t.n_faces(); ++f) {
     const Index g = mate[f];
     if (g == kNone) {
@@ -185,9 +185,9 @@ QuadMesh refine_mixed(const TriMesh& t, const std::vector<Index>& mate) {
 QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertReport* report) {
   TriMesh t = input;
   ConvertReport r;
-  r.parity_splits = fix_parity(t);
-  r.input_triangles = t.n_faces();
   auto adj = triangle_adjacency(t);
+  r.parity_splits = fix_parity(t, adj);
+  r.input_triangles = t.n_faces();
 
   // Greedy matching, best candidate first; ties broken by ids for determinism.
   struct Cand {
@@ -270,7 +270,7 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
     q = QuadMesh::from_faces(t.positions, quads);
   } else {
     r.refined = true;
-    q = refine_mixed(t, mate);
+    q = refine_mixed(t, adj, mate);
   }
   r.quads = q.n_faces();
   if (report) *report = r;

@@ -294,16 +294,16 @@ double bbox_diagonal(const std::vector<Vec3>& positions) {
   return (hi - lo).norm();
 }
 
-Index face_components(const TriMesh& mesh, std::vector<Index>& component) {
-  const auto adj = triangle_adjacency(mesh);
-  UnionFind uf(mesh.n_faces());
-  for (Index f = 0; f < mesh.n_faces(); ++f)
-    for (Index g : adj[f])
+Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::vector<Index>& component) {
+  const Index nf = Index(adjacency.size());
+  UnionFind uf(nf);
+  for (Index f = 0; f < nf; ++f)
+    for (Index g : adjacency[f])
       if (g != kNone) uf.unite(f, g);
-  component.assign(mesh.n_faces(), kNone);
-  std::vector<Index> id(mesh.n_faces(), kNone);
+  component.assign(nf, kNone);
+  std::vector<Index> id(nf, kNone);
   Index n = 0;
-  for (Index f = 0; f < mesh.n_faces(); ++f) {
+  for (Index f = 0; f < nf; ++f) {
     const Index root = uf.find(f);
     if (id[root] == kNone) id[root] = n++;
     component[f] = id[root];

@@ -55,8 +55,8 @@ double bbox_diagonal(const std::vector<Vec3>& positions);
 //! border. \pre edge-manifold (see clean()).
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& mesh);
 
-//! Connected component id per face (faces sharing an edge), and their count.
-//! \pre edge-manifold (see clean()).
-Index face_components(const TriMesh& mesh, std::vector<Index>& component);
+//! Connected component id per face (faces sharing an edge), and their count, from
+//! the mesh's triangle_adjacency().
+Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::vector<Index>& component);
 
 }  // namespace qs
