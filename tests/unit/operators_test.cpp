@@ -173,6 +173,23 @@ TEST(EdgeRotation, refusals) {
   EXPECT_TRUE(can_rotate_edge(g, halfedge_between(g, 4, 1), Rotation::Ccw));
 }
 
+TEST(EdgeRotation, fold_check_can_leave_out_the_ear) {
+  // Rotating the inner edge at border vertex 1 of a flat 2x2 grid (either way) leaves 1
+  // in one face with its border neighbours 0 and 2, at 180 degrees: that face is not
+  // convex, the other one is (with the centre raised off the row 3-4-5). The border ear
+  // removal collapses that face right away.
+  QuadMesh g = quad_grid(2, 2);
+  g.position(4) = Vec3(1, 1.5, 0);
+  const Index h = halfedge_between(g, 4, 1);
+  ASSERT_NE(h, kNone);
+  for (Rotation r : {Rotation::Ccw, Rotation::Cw}) {
+    ASSERT_TRUE(can_rotate_edge(g, h, r));
+    EXPECT_TRUE(rotation_folds(g, h, r));
+    EXPECT_FALSE(rotation_folds(g, h, r, 1));
+    EXPECT_TRUE(rotation_folds(g, h, r, 7));  // a vertex of neither face: both checked
+  }
+}
+
 TEST(EdgeRotation, rotation_and_back_restores_valences) {
   QuadMesh m = quad_grid(4, 4);
   std::vector<int> before;

@@ -57,10 +57,11 @@ bool can_rotate_edge(const QuadMesh& m, Index h, Rotation r) {
   return !shared;
 }
 
-bool rotation_folds(const QuadMesh& m, Index h, Rotation r) {
+bool rotation_folds(const QuadMesh& m, Index h, Rotation r, Index except) {
   const Hexagon x = hexagon(m, h);
   const Vec3 ref = m.face_area_normal(x.f1) + m.face_area_normal(x.f2);
   for (const auto& q : rotated_faces(m, h, r)) {
+    if (except != kNone && std::find(q.begin(), q.end(), except) != q.end()) continue;
     const Vec3 &p0 = m.position(q[0]), &p1 = m.position(q[1]), &p2 = m.position(q[2]), &p3 = m.position(q[3]);
     if (!quad_keeps_orientation(p0, p1, p2, p3, ref) || !quad_is_convex(p0, p1, p2, p3)) return true;
   }

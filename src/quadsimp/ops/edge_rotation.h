@@ -34,7 +34,9 @@ bool can_rotate_edge(const QuadMesh& mesh, Index h, Rotation r);
 std::array<std::array<Index, 4>, 2> rotated_faces(const QuadMesh& mesh, Index h, Rotation r);
 
 //! True when a rotated face would be folded or degenerate relative to the old pair.
-bool rotation_folds(const QuadMesh& mesh, Index h, Rotation r);
+//! A rotated face with corner `except` is not checked (kNone: both are): the border
+//! ear removal rotates an edge to make an ear that it collapses right away.
+bool rotation_folds(const QuadMesh& mesh, Index h, Rotation r, Index except = kNone);
 
 //! Performs the rotation in place (faces keep their ids). \pre can_rotate_edge.
 void rotate_edge(QuadMesh& mesh, Index h, Rotation r);
