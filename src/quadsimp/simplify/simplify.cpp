@@ -424,7 +424,7 @@ void Simplifier::rotate_in_region() {
 // of valence 4 or 5 can outweigh its border springs (bump test: three border vertices
 // slid onto one point), while a quarter there held bunny.ply's border vertices where
 // the projection onto its jagged holes first brings them closer (16 runs of 16 from
-// 2K to 13K quads ended with a border edge under 0.5 mu, against 5).
+// 2K to 13K quads ended with a border edge under 0.5 mu, against 4).
 bool Simplifier::moved_faces_ok(Index v, const Vec3& p) const {
   const Vec3& before = m_.position(v);
   auto comes_within = [&](Index e, double share) {
