@@ -583,9 +583,14 @@ bool Simplifier::remove_border_vertex(Index b) {
   const double ab = (m_.position(a) - m_.position(b)).norm(), bc = (m_.position(b) - m_.position(c)).norm();
   const int valence = m_.valence(b);
   if (ab + bc >= kBorderShort * mu_ || valence > 3) return false;
+  // a, b and c merge into one vertex, at b unless a or c is a corner, which then keeps
+  // its place (merging at b cut the corners of an L-shaped grid by a third of mu).
+  const bool corner_a = is_border_corner(a), corner_c = is_border_corner(c);
+  if (corner_a && corner_c) return false;
+  const Vec3 keep = m_.position(corner_a ? a : corner_c ? c : b);
   // The ear is f with b at corner k, once b has a single face.
   auto try_ear = [&](Index ear, Index k) {
-    const Vec3 p = m_.position(b);
+    const Vec3 p = keep;
     const SurfacePoint foot = ref_.closest(p);
     if (!can_collapse_border_ear(m_, ear, k) || !foot.found() ||
         !for_each_face_after_collapse(m_, ear, (k + 1) & 3u, p,
