@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
+#include <utility>
 
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/ops/border_ear.h"
@@ -77,6 +78,7 @@ class Simplifier {
   bool follows_reference(const Vec3& n, const std::array<Index, 4>& corners, const Vec3* q,
                          const Vec3& extra_normal) const;
   int target_valence_of_border(Index v) const;
+  std::pair<Vec3, Vec3> border_directions(Index v) const;
   double border_turn(Index v) const;
   bool is_border_corner(Index v) const;
   int target_valence(Index v) const { return m_.is_border_vertex(v) ? target_valence_of_border(v) : 4; }
@@ -232,20 +234,22 @@ bool Simplifier::shape_ok(Index f, const Vec3* q, const Vec3& extra_normal) cons
 // With 2 at both kinds, the two faces of a concave corner of bunny.ply's holes shared
 // its 270 degrees, one of them at 160 degrees with an edge of 0.38 mu.
 int Simplifier::target_valence_of_border(Index v) const {
-  const Index h_in = m_.border_in(v);
-  const Vec3 p = m_.position(v);
-  const Vec3 a = (p - m_.position(m_.to(m_.out(v)))).normalized(), b = (m_.position(m_.from(h_in)) - p).normalized();
-  if (a.dot(b) >= 0.5) return 3;
+  const auto [in, out] = border_directions(v);
+  if (in.dot(out) >= 0.5) return 3;
   // Faces lie to the left of their half-edges: a left turn (about the surface's normal)
   // from the incoming border edge to the outgoing one is a convex corner.
-  return b.cross(a).dot(foot_normal_[v]) > 0 ? 2 : 4;
+  return in.cross(out).dot(foot_normal_[v]) > 0 ? 2 : 4;
+}
+
+// Unit directions of the border edges arriving at and leaving border vertex v.
+std::pair<Vec3, Vec3> Simplifier::border_directions(Index v) const {
+  const Vec3& p = m_.position(v);
+  return {(p - m_.position(m_.from(m_.border_in(v)))).normalized(), (m_.position(m_.to(m_.out(v))) - p).normalized()};
 }
 
 // The angle between the two border edges at border vertex v.
 double Simplifier::border_turn(Index v) const {
-  const Vec3 p = m_.position(v);
-  const Vec3 in = (p - m_.position(m_.from(m_.border_in(v)))).normalized();
-  const Vec3 out = (m_.position(m_.to(m_.out(v))) - p).normalized();
+  const auto [in, out] = border_directions(v);
   return std::acos(std::clamp(in.dot(out), -1.0, 1.0));
 }
 
