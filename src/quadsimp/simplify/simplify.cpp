@@ -594,14 +594,13 @@ bool Simplifier::remove_border_vertex(Index b) {
   const Vec3 keep = m_.position(corner_a ? a : corner_c ? c : b);
   // The ear is f with b at corner k, once b has a single face.
   auto try_ear = [&](Index ear, Index k) {
-    const Vec3 p = keep;
-    const SurfacePoint foot = ref_.closest(p);
+    const SurfacePoint foot = ref_.closest(keep);
     if (!can_collapse_border_ear(m_, ear, k) || !foot.found() ||
-        !for_each_face_after_collapse(m_, ear, (k + 1) & 3u, p,
+        !for_each_face_after_collapse(m_, ear, (k + 1) & 3u, keep,
                               [&](Index g, const Vec3* q) { return shape_ok(g, q, ref_.normal_at(foot)); }))
       return false;
     const Index d = m_.vertex(ear, k + 2);
-    const Index v = collapse_border_ear(m_, ear, k, p);
+    const Index v = collapse_border_ear(m_, ear, k, keep);
     record_foot(v, foot);
     ++rep_.border_collapses;
     after_change({v, d});
