@@ -53,6 +53,13 @@ Index count_components(const QuadMesh& m) {
   return n;
 }
 
+// Distance from p to the nearest vertex of m.
+double nearest_vertex_distance(const QuadMesh& m, const Vec3& p) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (Index v = 0; v < m.n_vertices(); ++v) nearest = std::min(nearest, (m.position(v) - p).norm());
+  return nearest;
+}
+
 // Simplify to `target` and check what every result must satisfy.
 SimplifyReport run_and_check(Case& c, Index target, const ReferenceSurface& ref, int passes = 2) {
   SimplifyOptions opt;
@@ -136,9 +143,7 @@ TEST(Simplify, flat_square_keeps_its_corners_and_coarsens_its_border) {
     run_and_check(c, target, ref);
     EXPECT_GT(quad_quality(c.quads).homeometry_min, 0.3);
     for (const Vec3& corner : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}) {
-      double nearest = std::numeric_limits<double>::infinity();
-      for (Index v = 0; v < c.quads.n_vertices(); ++v) nearest = std::min(nearest, (c.quads.position(v) - corner).norm());
-      EXPECT_LT(nearest, 1e-9) << "lost the corner at " << corner.transpose();
+      EXPECT_LT(nearest_vertex_distance(c.quads, corner), 1e-9) << "lost the corner at " << corner.transpose();
     }
   }
 }
@@ -161,9 +166,7 @@ TEST(Simplify, l_shape_keeps_its_six_corners) {
     run_and_check(c, target, ref);
     for (const Vec3& corner : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0.5, 0), Vec3(0.5, 0.5, 0), Vec3(0.5, 1, 0),
                                Vec3(0, 1, 0)}) {
-      double nearest = std::numeric_limits<double>::infinity();
-      for (Index v = 0; v < c.quads.n_vertices(); ++v) nearest = std::min(nearest, (c.quads.position(v) - corner).norm());
-      EXPECT_LT(nearest, 1e-9) << "lost the corner at " << corner.transpose();
+      EXPECT_LT(nearest_vertex_distance(c.quads, corner), 1e-9) << "lost the corner at " << corner.transpose();
     }
   }
 }
@@ -479,4 +482,3 @@ TEST(Metrics, offset_sphere_distance_is_the_offset) {
   const SurfaceDistance zero = surface_distance(tri_to_quad(plane), plane_ref, 100000);
   EXPECT_LT(zero.hausdorff, 1e-6);
 }
-
