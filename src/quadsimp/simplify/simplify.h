@@ -25,8 +25,9 @@ struct SimplifyOptions {
   double m_factor = 1.0;
   //! In adaptive mode F_S is clamped to its [q, 1-q] quantiles in the priority and in the
   //! smoothing's target sizes, which bounds the size ratio between the finest and the
-  //! coarsest parts (0: no clamp). Unclamped, thin parts (the bunny's ears) took most of the budget and the rest grew
-  //! huge faces: RMS distance 3x the uniform one at the same count. Measured at the
+  //! coarsest parts (0: no clamp). Unclamped, thin parts (the bunny's ears) took most of
+  //! the budget and the rest grew huge faces: RMS distance 3x the uniform one at the
+  //! same count. Measured at the
   //! paper's Table 2 counts, 0.3 gave the lowest RMS; with the sized smoothing 0.2 was
   //! 1-8% lower at fixed counts, too close to retune for (bench/RESULTS.md).
   double s_percentiles = 0.3;
@@ -51,7 +52,9 @@ struct SimplifyOptions {
   //! ear collapses, ours): without it holes keep all their input edges.
   bool coarsen_border = true;
   //! Rotation + smoothing passes after each collapse. The paper does one; a second
-  //! one over the smoothed zone gives more regular meshes for about twice the time.
+  //! one over the smoothed zone gives 3-6 points more regular vertices. It runs only
+  //! outside the fine phase (below), so it costs about a fifth more time overall
+  //! (bunny.obj to 5K: 0.87 s against 0.74 s with one).
   int passes = 2;
   //! While the mesh has more than this many times the target faces, each collapse gets
   //! one pass with one sweep (0: full passes throughout; no effect without a target).
