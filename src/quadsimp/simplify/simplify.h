@@ -27,9 +27,9 @@ struct SimplifyOptions {
   //! smoothing's target sizes, which bounds the size ratio between the finest and the
   //! coarsest parts (0: no clamp). Unclamped, thin parts (the bunny's ears) took most of
   //! the budget and the rest grew huge faces: RMS distance 3x the uniform one at the
-  //! same count. Measured at the
-  //! paper's Table 2 counts, 0.3 gave the lowest RMS; with the sized smoothing 0.2 was
-  //! 1-8% lower at fixed counts, too close to retune for (bench/RESULTS.md).
+  //! same count. Measured at the paper's Table 2 counts, 0.3 gave the lowest RMS; with
+  //! the sized smoothing 0.2 was 1-8% lower at fixed counts, too close to retune for
+  //! (bench/RESULTS.md).
   double s_percentiles = 0.3;
   //! Automatic halting (adaptive mode without a face target): stop once the faces whose
   //! collapse the M-fitmap refused, and that have not changed since, cover this share
