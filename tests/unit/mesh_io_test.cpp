@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -130,6 +131,32 @@ TEST_F(MeshIo, quads_from_polygons_and_from_faux_flags) {
   const std::string pent = write("p.obj", "v 0 0 0\nv 1 0 0\nv 2 1 0\nv 1 2 0\nv 0 1 0\nf 1 2 3 4 5\n");
   EXPECT_FALSE(read_mesh(pent).is_pure_quad());
   EXPECT_EQ(read_mesh(pent).triangles.size(), 3u);
+}
+
+TEST_F(MeshIo, quads_that_share_a_diagonal_are_read_back_as_quads) {
+  // Two quads touching at opposite corners 0 and 2, as adaptive runs can leave them: the
+  // importers split both along 0-2, so that directed edge belongs to two triangles.
+  const std::string v = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n1.5 -0.5 1\n-0.5 1.5 1\n";
+  const std::string ply = write("d.ply",
+      "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 2\nproperty list uchar int vertex_indices\nend_header\n" + v + "4 0 1 2 3\n4 2 4 0 5\n");
+  const std::string off = write("d.off", "OFF\n6 2 0\n" + v + "4 0 1 2 3\n4 2 4 0 5\n");
+  const std::string obj = write("d.obj",
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1.5 -0.5 1\nv -0.5 1.5 1\nf 1 2 3 4\nf 3 5 1 6\n");
+  for (const auto& p : {ply, off, obj}) {
+    SCOPED_TRACE(p);
+    const MeshFile f = read_mesh(p);
+    ASSERT_TRUE(f.is_pure_quad());
+    ASSERT_EQ(f.quads.size(), 2u);
+    for (Index q = 0; q < 2; ++q) {
+      const std::array<Index, 4> want = q == 0 ? std::array<Index, 4>{0, 1, 2, 3} : std::array<Index, 4>{2, 4, 0, 5};
+      const auto& got = f.quads[q];
+      const auto at = std::find(got.begin(), got.end(), want[0]);
+      ASSERT_NE(at, got.end());
+      const int shift = int(at - got.begin());
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(got[(k + shift) % 4], want[k]);
+    }
+  }
 }
 
 TEST_F(MeshIo, bad_files_give_one_clear_error) {

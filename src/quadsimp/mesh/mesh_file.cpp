@@ -9,36 +9,47 @@ MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array
                              const std::vector<std::uint8_t>& faux) {
   MeshFile out;
   out.positions = std::move(positions);
-  std::unordered_map<std::uint64_t, Index> dir;
-  dir.reserve(3 * tris.size());
-  for (Index t = 0; t < tris.size(); ++t)
-    for (int k = 0; k < 3; ++k) dir[(std::uint64_t(tris[t][k]) << 32) | tris[t][(k + 1) % 3]] = t;
-  bool pure = !tris.empty() && faux.size() == tris.size();
-  std::vector<std::array<Index, 4>> quads;
-  for (Index t = 0; t < tris.size() && pure; ++t) {
+  const Index n = Index(tris.size());
+  auto faux_edge = [&](Index t) {
     const unsigned b = faux[t] & 7u;
-    if (b != 1 && b != 2 && b != 4) {
+    return b == 1 ? 0 : b == 2 ? 1 : b == 4 ? 2 : -1;
+  };
+  // u's faux edge is t's faux edge reversed.
+  auto partners = [&](Index t, Index u) {
+    const int k = faux_edge(t), j = faux_edge(u);
+    return k >= 0 && j >= 0 && tris[t][k] == tris[u][(j + 1) % 3] && tris[t][(k + 1) % 3] == tris[u][j];
+  };
+  auto key = [](Index a, Index b) { return (std::uint64_t(a) << 32) | b; };
+  // Two quads may touch at opposite corners, both split along the same diagonal, so a
+  // directed edge can belong to two triangles: keep every holder, and try the next
+  // triangle in file order first, where vcglib and MeshLab put a polygon's second half.
+  std::unordered_multimap<std::uint64_t, Index> dir;
+  dir.reserve(3 * tris.size());
+  for (Index t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k) dir.emplace(key(tris[t][k], tris[t][(k + 1) % 3]), t);
+  bool pure = n > 0 && faux.size() == tris.size();
+  std::vector<char> paired(pure ? n : 0, 0);
+  std::vector<std::array<Index, 4>> quads;
+  for (Index t = 0; t < n && pure; ++t) {
+    if (paired[t]) continue;
+    const int k = faux_edge(t);
+    Index u = n;
+    if (t + 1 < n && !paired[t + 1] && partners(t, t + 1)) {
+      u = t + 1;
+    } else if (k >= 0) {
+      const auto range = dir.equal_range(key(tris[t][(k + 1) % 3], tris[t][k]));
+      for (auto it = range.first; it != range.second && u == n; ++it)
+        if (!paired[it->second] && partners(t, it->second)) u = it->second;
+    }
+    if (u == n) {
       pure = false;
       break;
     }
-    const int k = b == 1 ? 0 : b == 2 ? 1 : 2;
-    const Index a = tris[t][k], c = tris[t][(k + 1) % 3], apex = tris[t][(k + 2) % 3];
-    const auto it = dir.find((std::uint64_t(c) << 32) | a);
-    if (it == dir.end()) {
-      pure = false;
-      break;
-    }
-    const Index u = it->second;
-    const auto& o = tris[u];
-    int j = 0;
-    while (!(o[j] == c && o[(j + 1) % 3] == a)) ++j;
-    if (!(faux[u] & (1u << j))) {
-      pure = false;
-      break;
-    }
-    if (t < u) quads.push_back({apex, a, o[(j + 2) % 3], c});
+    paired[t] = paired[u] = 1;
+    const int j = faux_edge(u);
+    quads.push_back({tris[t][(k + 2) % 3], tris[t][k], tris[u][(j + 2) % 3], tris[t][(k + 1) % 3]});
   }
-  if (pure && 2 * quads.size() == tris.size())
+  if (pure)
     out.quads = std::move(quads);
   else
     out.triangles = std::move(tris);
