@@ -60,6 +60,7 @@ SimplifyReport simplify_adaptive(const TriMesh& t, QuadMesh& q, Index target = 0
   opt.target_faces = target;
   SimplifyReport r = simplify(q, ref, opt);
   validate(q);
+  EXPECT_EQ(count_shared_diagonals(q), 0u);
   return r;
 }
 

@@ -190,6 +190,25 @@ TEST(EdgeRotation, fold_check_can_leave_out_the_ear) {
   }
 }
 
+TEST(EdgeRotation, never_makes_two_quads_share_a_diagonal) {
+  // Random rotations on a grid (topology only): the predicate must refuse every one
+  // after which two quads would touch at opposite corners. Without the diagonal check
+  // this walk makes such a pair within a few hundred rotations.
+  QuadMesh m = quad_grid(6, 6);
+  std::mt19937 rng(7);
+  int done = 0;
+  for (int step = 0; step < 4000; ++step) {
+    const Index h = Index(rng() % m.halfedge_capacity());
+    const Rotation r = rng() % 2 ? Rotation::Ccw : Rotation::Cw;
+    if (!can_rotate_edge(m, h, r)) continue;
+    rotate_edge(m, h, r);
+    ++done;
+    validate(m);
+    ASSERT_EQ(count_shared_diagonals(m), 0u) << "after rotation " << done;
+  }
+  EXPECT_GT(done, 500);
+}
+
 TEST(EdgeRotation, rotation_and_back_restores_valences) {
   QuadMesh m = quad_grid(4, 4);
   std::vector<int> before;

@@ -67,6 +67,7 @@ SimplifyReport run_and_check(Case& c, Index target, const ReferenceSurface& ref,
   opt.passes = passes;
   const SimplifyReport r = simplify(c.quads, ref, opt);
   validate(c.quads);
+  EXPECT_EQ(count_shared_diagonals(c.quads), 0u);
   EXPECT_LE(c.quads.n_faces(), target);
   EXPECT_GE(c.quads.n_faces(), target - target / 50 - 2);  // cleaning may remove a few more
   EXPECT_EQ(r.faces, c.quads.n_faces());
@@ -201,6 +202,7 @@ TEST(Simplify, table1_rows_meet_the_uniform_targets) {
       opt.target_faces = target;
       simplify(q, ref, opt);
       validate(q);
+      EXPECT_EQ(count_shared_diagonals(q), 0u);
       const QuadQuality quality = quad_quality(q, &ref);
       EXPECT_EQ(quality.faces, target);
       EXPECT_GE(quality.regular_percent, 80.0);
