@@ -202,6 +202,15 @@ TEST(Adaptive, auto_halt_stops_once_the_m_fitmap_blocks_its_share) {
   const SimplifyReport at_share = run(0.3, halted);
   EXPECT_GT(until_nothing.collapses, 0u);
   EXPECT_GE(at_share.blocked_share, 0.3);
+  // It stops at the refusal that crosses the share: by less than one (largest) face.
+  double total = 0, largest = 0;
+  for (Index f = 0; f < halted.face_capacity(); ++f)
+    if (halted.is_face_live(f)) {
+      const double a = 0.5 * halted.face_area_normal(f).norm();
+      total += a;
+      largest = std::max(largest, a);
+    }
+  EXPECT_LT(at_share.blocked_share, 0.3 + largest / total);
   EXPECT_LT(at_share.blocked_share, until_nothing.blocked_share);
   EXPECT_GT(halted.n_faces(), paper.n_faces());
   // The paper's rule stops only when nothing but the upper half, and the row of (by then
