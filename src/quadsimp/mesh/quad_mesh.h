@@ -138,9 +138,9 @@ class QuadMesh {
 void validate(const QuadMesh& mesh);
 
 //! The number of face diagonals whose two corners also share another face. Such quads
-//! touch at two corners without the edge between them, and no split of the quads into
-//! triangles along diagonals is then manifold (MeshLab shows their faux edges as
-//! non-manifold). Valid for validate(), but the operators never make one: 0 expected.
+//! touch at two corners without the edge between them; split into triangles along that
+//! diagonal, as vcglib's importers did with one such pair, they make an edge of four
+//! triangles. validate() accepts them, but the operators never make one: 0 expected.
 Index count_shared_diagonals(const QuadMesh& mesh);
 
 }  // namespace qs

@@ -58,7 +58,7 @@ bool can_rotate_edge(const QuadMesh& m, Index h, Rotation r) {
   };
   // The new edge would be doubled. Two corners that end up opposite in a new face and
   // already share another face would make two quads touch at two corners without the
-  // edge between them: no split of the quads into triangles is manifold there.
+  // edge between them (see count_shared_diagonals).
   const Index p = r == Rotation::Ccw ? x.x1 : x.x2, q = r == Rotation::Ccw ? x.y1 : x.y2;
   if (share_a_face_outside(p, q)) return false;
   for (const auto& n : rotated_faces(m, h, r))
