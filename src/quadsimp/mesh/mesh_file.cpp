@@ -14,21 +14,24 @@ MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array
     const unsigned b = faux[t] & 7u;
     return b == 1 ? 0 : b == 2 ? 1 : b == 4 ? 2 : -1;
   };
+  bool pure = n > 0 && faux.size() == tris.size();
+  for (Index t = 0; t < n && pure; ++t) pure = faux_edge(t) >= 0;
+  if (!pure) {
+    out.triangles = std::move(tris);
+    return out;
+  }
   // u's faux edge is t's faux edge reversed.
   auto partners = [&](Index t, Index u) {
     const int k = faux_edge(t), j = faux_edge(u);
-    return k >= 0 && j >= 0 && tris[t][k] == tris[u][(j + 1) % 3] && tris[t][(k + 1) % 3] == tris[u][j];
+    return tris[t][k] == tris[u][(j + 1) % 3] && tris[t][(k + 1) % 3] == tris[u][j];
   };
+  // vcglib and MeshLab put a polygon's two triangles next to each other, so the next
+  // triangle is tried first. Otherwise: every triangle holding the reversed edge. Two
+  // quads may touch at opposite corners, both split along that diagonal, so a directed
+  // edge can have two holders.
   auto key = [](Index a, Index b) { return (std::uint64_t(a) << 32) | b; };
-  // Two quads may touch at opposite corners, both split along the same diagonal, so a
-  // directed edge can belong to two triangles: keep every holder, and try the next
-  // triangle in file order first, where vcglib and MeshLab put a polygon's second half.
-  std::unordered_multimap<std::uint64_t, Index> dir;
-  dir.reserve(3 * tris.size());
-  for (Index t = 0; t < n; ++t)
-    for (int k = 0; k < 3; ++k) dir.emplace(key(tris[t][k], tris[t][(k + 1) % 3]), t);
-  bool pure = n > 0 && faux.size() == tris.size();
-  std::vector<char> paired(pure ? n : 0, 0);
+  std::unordered_multimap<std::uint64_t, Index> dir;  // built on first need
+  std::vector<char> paired(n, 0);
   std::vector<std::array<Index, 4>> quads;
   for (Index t = 0; t < n && pure; ++t) {
     if (paired[t]) continue;
@@ -36,7 +39,12 @@ MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array
     Index u = n;
     if (t + 1 < n && !paired[t + 1] && partners(t, t + 1)) {
       u = t + 1;
-    } else if (k >= 0) {
+    } else {
+      if (dir.empty()) {
+        dir.reserve(3 * std::size_t(n));
+        for (Index x = 0; x < n; ++x)
+          for (int i = 0; i < 3; ++i) dir.emplace(key(tris[x][i], tris[x][(i + 1) % 3]), x);
+      }
       const auto range = dir.equal_range(key(tris[t][(k + 1) % 3], tris[t][k]));
       for (auto it = range.first; it != range.second && u == n; ++it)
         if (!paired[it->second] && partners(t, it->second)) u = it->second;
