@@ -9,6 +9,7 @@
 
 #include "fixtures/shapes.h"
 #include "quadsimp/io/load_input.h"
+#include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/util/errors.h"
 
 using namespace qs;
@@ -157,6 +158,23 @@ TEST_F(MeshIo, quads_that_share_a_diagonal_are_read_back_as_quads) {
       for (int k = 0; k < 4; ++k) EXPECT_EQ(got[(k + shift) % 4], want[k]);
     }
   }
+}
+
+TEST(FauxPairs, halves_of_a_quad_need_not_be_next_to_each_other) {
+  // A 2x1 strip (0,1,4,3) (1,2,5,4), each split along its 0-2 diagonal, the halves
+  // interleaved: bit k of a flag marks edge k (corner k to k+1) as the inner diagonal.
+  const std::vector<Vec3> p(6, Vec3::Zero());
+  const std::vector<std::array<Index, 3>> tris = {{0, 1, 4}, {1, 2, 5}, {0, 4, 3}, {1, 5, 4}};
+  const std::vector<std::uint8_t> faux = {4, 4, 1, 1};
+  const MeshFile f = pair_faux_triangles(p, tris, faux);
+  ASSERT_TRUE(f.is_pure_quad());
+  ASSERT_EQ(f.quads.size(), 2u);
+  EXPECT_EQ(f.quads[0], (std::array<Index, 4>{1, 4, 3, 0}));
+  EXPECT_EQ(f.quads[1], (std::array<Index, 4>{2, 5, 4, 1}));
+  // One triangle without a faux edge: all stay triangles.
+  const MeshFile t = pair_faux_triangles(p, tris, {4, 4, 1, 0});
+  EXPECT_FALSE(t.is_pure_quad());
+  EXPECT_EQ(t.triangles.size(), 4u);
 }
 
 TEST_F(MeshIo, bad_files_give_one_clear_error) {
