@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -43,19 +42,21 @@ std::string error_of(const std::string& p) {
   return "";
 }
 
+// Same cycle, possibly starting at another corner.
+void expect_same_cycle(const std::array<Index, 4>& got, const std::array<Index, 4>& want) {
+  int shift = 0;
+  while (shift < 4 && got[shift] != want[0]) ++shift;
+  ASSERT_LT(shift, 4);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(got[(k + shift) % 4], want[k]);
+}
+
 void expect_same_quads(const QuadMesh& a, const MeshFile& b) {
   ASSERT_TRUE(b.is_pure_quad());
   ASSERT_EQ(b.positions.size(), a.n_vertices());
   ASSERT_EQ(b.quads.size(), a.n_faces());
   for (Index v = 0; v < a.n_vertices(); ++v) EXPECT_NEAR((b.positions[v] - a.position(v)).norm(), 0, 1e-6);
   const auto q = a.quads();
-  for (std::size_t f = 0; f < q.size(); ++f) {
-    // Same cycle, possibly starting at another corner.
-    int shift = 0;
-    while (shift < 4 && b.quads[f][shift] != q[f][0]) ++shift;
-    ASSERT_LT(shift, 4);
-    for (int k = 0; k < 4; ++k) EXPECT_EQ(b.quads[f][(k + shift) % 4], q[f][k]);
-  }
+  for (std::size_t f = 0; f < q.size(); ++f) expect_same_cycle(b.quads[f], q[f]);
 }
 
 }  // namespace
@@ -149,14 +150,8 @@ TEST_F(MeshIo, quads_that_share_a_diagonal_are_read_back_as_quads) {
     const MeshFile f = read_mesh(p);
     ASSERT_TRUE(f.is_pure_quad());
     ASSERT_EQ(f.quads.size(), 2u);
-    for (Index q = 0; q < 2; ++q) {
-      const std::array<Index, 4> want = q == 0 ? std::array<Index, 4>{0, 1, 2, 3} : std::array<Index, 4>{2, 4, 0, 5};
-      const auto& got = f.quads[q];
-      const auto at = std::find(got.begin(), got.end(), want[0]);
-      ASSERT_NE(at, got.end());
-      const int shift = int(at - got.begin());
-      for (int k = 0; k < 4; ++k) EXPECT_EQ(got[(k + shift) % 4], want[k]);
-    }
+    expect_same_cycle(f.quads[0], {0, 1, 2, 3});
+    expect_same_cycle(f.quads[1], {2, 4, 0, 5});
   }
 }
 
