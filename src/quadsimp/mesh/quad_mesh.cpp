@@ -247,21 +247,21 @@ void validate(const QuadMesh& m) {
     if (m.is_vertex_live(v) && count[v] == 0) fail("vertex " + std::to_string(v) + " has no face");
 }
 
+bool share_a_face(const QuadMesh& m, Index p, Index q, Index skip_a, Index skip_b) {
+  bool shared = false;
+  m.for_each_outgoing(p, [&](Index h) {
+    const Index f = QuadMesh::face(h);
+    if (f == skip_a || f == skip_b) return;
+    for (Index k = 0; k < 4; ++k) shared |= m.vertex(f, k) == q;
+  });
+  return shared;
+}
+
 Index count_shared_diagonals(const QuadMesh& m) {
   Index n = 0;
-  for (Index f = 0; f < m.face_capacity(); ++f) {
-    if (!m.is_face_live(f)) continue;
-    for (Index k = 0; k < 2; ++k) {
-      const Index a = m.vertex(f, k), c = m.vertex(f, k + 2);
-      bool shared = false;
-      m.for_each_outgoing(a, [&](Index h) {
-        const Index g = QuadMesh::face(h);
-        if (g != f && (m.vertex(g, 0) == c || m.vertex(g, 1) == c || m.vertex(g, 2) == c || m.vertex(g, 3) == c))
-          shared = true;
-      });
-      n += shared;
-    }
-  }
+  for (Index f = 0; f < m.face_capacity(); ++f)
+    if (m.is_face_live(f))
+      for (Index k = 0; k < 2; ++k) n += share_a_face(m, m.vertex(f, k), m.vertex(f, k + 2), f);
   return n;
 }
 

@@ -137,6 +137,9 @@ class QuadMesh {
 //! TopologyError naming the first violation.
 void validate(const QuadMesh& mesh);
 
+//! Whether p and q are corners of one face other than the faces skip_a and skip_b.
+bool share_a_face(const QuadMesh& mesh, Index p, Index q, Index skip_a = kNone, Index skip_b = kNone);
+
 //! The number of face diagonals whose two corners also share another face. Such quads
 //! touch at two corners without the edge between them; split into triangles along that
 //! diagonal, as vcglib's importers did with one such pair, they make an edge of four

@@ -47,22 +47,13 @@ bool can_rotate_edge(const QuadMesh& m, Index h, Rotation r) {
   std::sort(c.begin(), c.end());
   if (std::adjacent_find(c.begin(), c.end()) != c.end()) return false;
   if (m.valence(x.u) - 1 < min_valence(m, x.u) || m.valence(x.w) - 1 < min_valence(m, x.w)) return false;
-  auto share_a_face_outside = [&](Index p, Index q) {
-    bool shared = false;
-    m.for_each_outgoing(p, [&](Index e) {
-      const Index f = QuadMesh::face(e);
-      if (f == x.f1 || f == x.f2) return;
-      for (Index k = 0; k < 4; ++k) shared |= m.vertex(f, k) == q;
-    });
-    return shared;
-  };
   // The new edge would be doubled. Two corners that end up opposite in a new face and
   // already share another face would make two quads touch at two corners without the
   // edge between them (see count_shared_diagonals).
   const Index p = r == Rotation::Ccw ? x.x1 : x.x2, q = r == Rotation::Ccw ? x.y1 : x.y2;
-  if (share_a_face_outside(p, q)) return false;
+  if (share_a_face(m, p, q, x.f1, x.f2)) return false;
   for (const auto& n : rotated_faces(m, h, r))
-    if (share_a_face_outside(n[0], n[2]) || share_a_face_outside(n[1], n[3])) return false;
+    if (share_a_face(m, n[0], n[2], x.f1, x.f2) || share_a_face(m, n[1], n[3], x.f1, x.f2)) return false;
   return true;
 }
 
