@@ -169,3 +169,19 @@ def test_same_result_as_the_cli(bunny_path, cli, tmp_path):
                          ("homeometry_max", "homeometry_max"), ("rms_e3", "rms_e3"),
                          ("mean_to_reference_e3", "mean_to_ref_e3")):
         assert q[ours] == pytest.approx(stats[theirs], rel=0.01), ours
+
+
+def test_adaptive_automatic_halting_stops_where_the_cli_does(bunny_path, cli, tmp_path):
+    # Same input, same fitmaps, same loop: the filter and the CLI halt at the same count.
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(bunny_path)
+    ms.meshing_quad_mesh_simplification(adaptive=True, autohalt=True)
+    q = ms.get_quad_mesh_quality_measures(referencemesh=0, samplenum=100000)
+    out = tmp_path / "cli.ply"
+    subprocess.run([cli, "simplify", bunny_path, str(out), "--adaptive", "--auto-halt", "-q"], check=True,
+                   stdout=subprocess.DEVNULL)
+    stats = json.loads(subprocess.run([cli, "stats", bunny_path, str(out), "--json", "--samples", "100000"],
+                                      check=True, capture_output=True, text=True).stdout)
+    for key in ("faces", "vertices", "max_valence"):
+        assert q[key] == stats[key], key
+    assert q["regular_percent"] == pytest.approx(stats["regular_percent"], rel=0.01)
