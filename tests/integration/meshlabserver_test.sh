@@ -4,7 +4,8 @@
 #  - the example .mlx script simplifies a generated torus and the shared bunny, and the
 #    PLY saved with face flags (-m ff) reads back as a valid pure quad mesh with the
 #    target face count (within 1%);
-#  - the plugin and the CLI give the same result for the same input and parameters;
+#  - the plugin and the CLI give the same result for the same input and parameters, in
+#    uniform mode and in adaptive mode with automatic halting;
 #  - a point cloud makes the filter fail with our message, without crashing MeshLab.
 # Usage: meshlabserver_test.sh PLUGIN.so QUADSIMP_CLI REPO_DIR DATASETS_DIR
 set -euo pipefail
@@ -67,6 +68,26 @@ for k in ("homeometry_min", "homeometry_max", "mean_edge", "hausdorff_e3", "rms_
     assert abs(a[k] - b[k]) <= 0.01 * max(abs(a[k]), 1e-9), (k, a[k], b[k])
 print("ok: plugin and CLI agree:", {k: a[k] for k in ("faces", "regular_percent", "rms_e3")})
 PY
+
+# 3b. Adaptive mode with automatic halting from a script: it stops where the CLI does.
+sed -e 's/name="Adaptive" type="RichBool" value="false"/name="Adaptive" type="RichBool" value="true"/' \
+    -e 's/name="AutoHalt" type="RichBool" value="false"/name="AutoHalt" type="RichBool" value="true"/' \
+    "$script" >"$work/adaptive.mlx"
+grep -q 'name="AutoHalt" type="RichBool" value="true"' "$work/adaptive.mlx" || fail "could not make the adaptive script"
+if server -i "$bunny" -o "$work/adaptive.ply" -m ff -s "$work/adaptive.mlx" &&
+   "$cli" stats "$bunny" "$work/adaptive.ply" --json --samples 50000 >"$work/adaptive.json"; then
+  "$cli" simplify "$bunny" "$work/cli_adaptive.ply" --adaptive --auto-halt -q >/dev/null
+  "$cli" stats "$bunny" "$work/cli_adaptive.ply" --json --samples 50000 >"$work/cli_adaptive.json"
+  python3 - "$work/cli_adaptive.json" "$work/adaptive.json" <<'PY' || fail "adaptive: plugin and CLI halt differently"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+for k in ("faces", "vertices", "max_valence", "regular_percent"):
+    assert a[k] == b[k], (k, a[k], b[k])
+print("ok: adaptive, automatic halting: plugin and CLI stop at", a["faces"], "quads")
+PY
+else
+  fail "adaptive script failed on the bunny"; cat "$work/server.log"
+fi
 
 # 4. Bad input: the filter refuses with our message, and MeshLab does not crash.
 expect_refusal() {  # name message (the input is $work/NAME.ply)
