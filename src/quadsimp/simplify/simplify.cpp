@@ -739,6 +739,8 @@ SimplifyReport Simplifier::run() {
       // Stop at the refusal that takes the share over. Checking only every 16th refusal
       // ran past it where few faces are blocked: the moai went on from 38 quads to 34.
       if (target == 0 && blocked_bound_ >= opt_.halt_share && blocked_share() >= opt_.halt_share) break;
+      // Runs with a target never recount above: prune the stale entries now and then.
+      if (blocked_.size() > 2 * std::size_t(m_.n_faces()) + 1024) blocked_share();
       continue;
     }
     cycle(e.face, e.k, pos, foot);
