@@ -155,33 +155,29 @@ def test_bad_input_raises_a_python_exception():
     assert "adaptive" in str(e.value)
 
 
-def test_same_result_as_the_cli(bunny_path, cli, tmp_path):
-    ms = simplified(bunny_path, 3000)
-    q = ms.get_quad_mesh_quality_measures(referencemesh=0, samplenum=100000)
-    out = tmp_path / "cli.ply"
-    subprocess.run([cli, "simplify", bunny_path, str(out), "--faces", "3000", "-q"], check=True,
-                   stdout=subprocess.DEVNULL)
-    stats = json.loads(subprocess.run([cli, "stats", bunny_path, str(out), "--json", "--samples", "100000"],
-                                      check=True, capture_output=True, text=True).stdout)
-    for key in ("faces", "vertices", "max_valence"):
-        assert q[key] == stats[key], key
-    for ours, theirs in (("regular_percent", "regular_percent"), ("homeometry_min", "homeometry_min"),
-                         ("homeometry_max", "homeometry_max"), ("rms_e3", "rms_e3"),
-                         ("mean_to_reference_e3", "mean_to_ref_e3")):
-        assert q[ours] == pytest.approx(stats[theirs], rel=0.01), ours
-
-
-def test_adaptive_automatic_halting_stops_where_the_cli_does(bunny_path, cli, tmp_path):
-    # Same input, same fitmaps, same loop: the filter and the CLI halt at the same count.
+def plugin_and_cli(bunny_path, cli, tmp_path, filter_args, cli_args):
+    """Quality of the filter's result and stats of the CLI's result, same input and settings."""
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(bunny_path)
-    ms.meshing_quad_mesh_simplification(adaptive=True, autohalt=True)
+    ms.meshing_quad_mesh_simplification(**filter_args)
     q = ms.get_quad_mesh_quality_measures(referencemesh=0, samplenum=100000)
     out = tmp_path / "cli.ply"
-    subprocess.run([cli, "simplify", bunny_path, str(out), "--adaptive", "--auto-halt", "-q"], check=True,
-                   stdout=subprocess.DEVNULL)
+    subprocess.run([cli, "simplify", bunny_path, str(out), "-q", *cli_args], check=True, stdout=subprocess.DEVNULL)
     stats = json.loads(subprocess.run([cli, "stats", bunny_path, str(out), "--json", "--samples", "100000"],
                                       check=True, capture_output=True, text=True).stdout)
     for key in ("faces", "vertices", "max_valence"):
         assert q[key] == stats[key], key
     assert q["regular_percent"] == pytest.approx(stats["regular_percent"], rel=0.01)
+    return q, stats
+
+
+def test_same_result_as_the_cli(bunny_path, cli, tmp_path):
+    q, stats = plugin_and_cli(bunny_path, cli, tmp_path, {"targetfacenum": 3000}, ["--faces", "3000"])
+    for ours, theirs in (("homeometry_min", "homeometry_min"), ("homeometry_max", "homeometry_max"),
+                         ("rms_e3", "rms_e3"), ("mean_to_reference_e3", "mean_to_ref_e3")):
+        assert q[ours] == pytest.approx(stats[theirs], rel=0.01), ours
+
+
+def test_adaptive_automatic_halting_stops_where_the_cli_does(bunny_path, cli, tmp_path):
+    # Same input, same fitmaps, same loop: the filter and the CLI halt at the same count.
+    plugin_and_cli(bunny_path, cli, tmp_path, {"adaptive": True, "autohalt": True}, ["--adaptive", "--auto-halt"])
