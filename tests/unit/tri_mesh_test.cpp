@@ -100,6 +100,10 @@ TEST(Clean, refuses_unusable_input_with_one_sentence) {
   fin.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
   fin.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
   EXPECT_NE(message_of(fin).find("non-manifold edge"), std::string::npos);
+  TriMesh fins = fin;  // four: two pairs, each of which looks manifold on its own
+  fins.positions.push_back({0, 0, -1});
+  fins.faces.push_back({1, 0, 5});
+  EXPECT_NE(message_of(fins).find("non-manifold edge"), std::string::npos);
 
   TriMesh flat;
   flat.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
