@@ -4,10 +4,8 @@
 // whose shared edge is marked faux on both sides.
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 #include <string>
-#include <unordered_set>
 #include <vector>
 
 #include "quadsimp/mesh/mesh_file.h"
@@ -44,10 +42,10 @@ MeshFile mesh_file_of(const CMesh& m) {
 }
 
 //! Replaces the content of `m` with the quads of `q`, each as two triangles split
-//! along a diagonal, which is marked faux: the shorter one, unless its corners are
-//! joined already (by an edge, or by a diagonal taken before). At a doublet (two quads
-//! sharing two edges) both quads' shorter diagonals join the same two corners, which
-//! made the same triangle twice, and MeshLab's polygon view then saw an 8-gon there.
+//! along a diagonal, which is marked faux: the shorter one, unless only its corners
+//! also share another face. At a doublet (two quads sharing two edges) both quads'
+//! shorter diagonals join the same two corners, which made the same triangle twice,
+//! and MeshLab's polygon view then saw an 8-gon there.
 template <class CMesh>
 void assign_quads(CMesh& m, const QuadMesh& q) {
   using Alloc = typename vcg::tri::Allocator<CMesh>;
@@ -64,11 +62,6 @@ void assign_quads(CMesh& m, const QuadMesh& q) {
     }
   (void)vi;
   Alloc::AddFaces(m, 2 * std::size_t(q.n_faces()));
-  auto key = [](Index a, Index b) { return std::uint64_t(std::min(a, b)) << 32 | std::max(a, b); };
-  std::unordered_set<std::uint64_t> joined;  // edges, then the diagonals taken
-  for (Index face = 0; face < q.face_capacity(); ++face)
-    if (q.is_face_live(face))
-      for (Index k = 0; k < 4; ++k) joined.insert(key(q.vertex(face, k), q.vertex(face, k + 1)));
   std::size_t f = 0;
   for (Index face = 0; face < q.face_capacity(); ++face) {
     if (!q.is_face_live(face)) continue;
@@ -76,9 +69,8 @@ void assign_quads(CMesh& m, const QuadMesh& q) {
     // Rotate so that the diagonal taken is c0-c2.
     const bool shorter_02 =
         (q.position(c[0]) - q.position(c[2])).squaredNorm() <= (q.position(c[1]) - q.position(c[3])).squaredNorm();
-    const bool taken_02 = joined.count(key(c[0], c[2])) > 0, taken_13 = joined.count(key(c[1], c[3])) > 0;
-    if (taken_02 != taken_13 ? taken_02 : !shorter_02) c = {c[1], c[2], c[3], c[0]};
-    joined.insert(key(c[0], c[2]));
+    const bool shared_02 = share_a_face(q, c[0], c[2], face), shared_13 = share_a_face(q, c[1], c[3], face);
+    if (shared_02 != shared_13 ? shared_02 : !shorter_02) c = {c[1], c[2], c[3], c[0]};
     auto& t1 = m.face[f++];
     auto& t2 = m.face[f++];
     t1.V(0) = &m.vert[id[c[0]]], t1.V(1) = &m.vert[id[c[1]]], t1.V(2) = &m.vert[id[c[2]]];
