@@ -4,6 +4,7 @@
 // whose shared edge is marked faux on both sides.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
