@@ -102,6 +102,7 @@ SimplifyParams simplify_params_of(const ParameterList& params) {
   p.tau = params.getFloat("Tau");
   p.preserve_boundary = params.getBool("PreserveBoundary");
   p.fast = params.getBool("Fast");
+  p.fit_to_input = params.getBool("FitToInput");
   if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
   return p;
 }

@@ -115,6 +115,7 @@ int run_simplify(const SimplifyArgs& a) {
   params.halt_share = a.halt_share;
   params.preserve_boundary = a.preserve_boundary;
   params.fast = a.fast;
+  params.fit_to_input = a.fit_to_input;
   if (const std::string why = check_params(params); !why.empty()) {
     std::cerr << "quadsimp simplify: " << why << " (see --help)\n";
     return kBadArguments;

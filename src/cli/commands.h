@@ -17,7 +17,7 @@ int run_convert(const ConvertArgs& args);
 struct SimplifyArgs {
   std::string input, output;
   unsigned faces = 0;
-  bool adaptive = false, auto_halt = false, preserve_boundary = false, fast = false, stats = false, json = false,
+  bool adaptive = false, auto_halt = false, preserve_boundary = false, fast = false, fit_to_input = false, stats = false, json = false,
        quiet = false;
   double tau = 0.05, m_factor = 1.0, halt_share = 0.05;
   unsigned samples = 1000000;

@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   s->add_flag("--preserve-boundary", simp.preserve_boundary, "keep the border exactly as it is");
   s->add_flag("--fast", simp.fast, "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");
+  s->add_flag("--fit-to-input", simp.fit_to_input,
+              "afterwards, move the vertices along their normals, off the input, to lower the distance both ways (ours)");
   s->add_flag("--stats", simp.stats, "print quality and distance metrics of the result");
   s->add_flag("--json", simp.json, "print the result's metrics (and the time) as one JSON object");
   s->add_option("--samples", simp.samples, "distance samples per surface for --stats")->capture_default_str();

@@ -108,6 +108,20 @@ TEST_F(Cli, simplify_stats_and_fitmap) {
   EXPECT_EQ(run("simplify " + input_ + " " + out + " --adaptive --auto-halt -q").code, 0);
 }
 
+TEST_F(Cli, fit_to_input_lowers_the_distance) {
+  // The JSON's RMS distance, with and without the fit, on the same simplification.
+  auto rms = [&](const std::string& extra) {
+    const CliRun r = run("simplify " + input_ + " " + p("s.ply") + " --faces 60 --json -q --samples 20000" + extra);
+    EXPECT_EQ(r.code, 0) << r.out;
+    const auto at = r.out.find("\"rms_e3\": ");
+    EXPECT_NE(at, std::string::npos) << r.out;
+    return at == std::string::npos ? 0.0 : std::stod(r.out.substr(at + 10));
+  };
+  const double plain = rms(""), fitted = rms(" --fit-to-input");
+  EXPECT_GT(plain, 0.0);
+  EXPECT_LT(fitted, 0.8 * plain);
+}
+
 TEST_F(Cli, bad_input_exits_1_and_writes_nothing) {
   const std::vector<std::string> bad = {
       write("cloud.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"

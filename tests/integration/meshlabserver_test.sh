@@ -26,7 +26,7 @@ for f in "Quad Mesh Simplification" "Convert to Pure Quad Mesh" "Compute Fitmaps
   grep -q "section .* $f" "$work/dump.txt" || fail "filter '$f' missing from meshlabserver -d"
 done
 for p in "Adaptive (fitmaps)" "Target number of quads" "Automatic halting (adaptive)" "Fitmap tolerance tau" \
-         "Preserve boundary" "Fast (one pass)" "Reference mesh" "Distance samples"; do
+         "Preserve boundary" "Fast (one pass)" "Fit vertices to the input" "Reference mesh" "Distance samples"; do
   grep -q "$p" "$work/dump.txt" || fail "parameter '$p' missing from meshlabserver -d"
 done
 
@@ -87,6 +87,27 @@ print("ok: adaptive, automatic halting: plugin and CLI stop at", a["faces"], "qu
 PY
 else
   fail "adaptive script failed on the bunny"; cat "$work/server.log"
+fi
+
+# 3c. The fit to the input from a script: the same as the CLI's, and closer than without.
+sed 's/name="FitToInput" type="RichBool" value="false"/name="FitToInput" type="RichBool" value="true"/' \
+    "$script" >"$work/fit.mlx"
+grep -q 'name="FitToInput" type="RichBool" value="true"' "$work/fit.mlx" || fail "could not make the fit script"
+if server -i "$bunny" -o "$work/fit.ply" -m ff -s "$work/fit.mlx" &&
+   "$cli" stats "$bunny" "$work/fit.ply" --json --samples 50000 >"$work/fit.json"; then
+  "$cli" simplify "$bunny" "$work/cli_fit.ply" --faces 3000 --fit-to-input -q >/dev/null
+  "$cli" stats "$bunny" "$work/cli_fit.ply" --json --samples 50000 >"$work/cli_fit.json"
+  python3 - "$work/cli_fit.json" "$work/fit.json" "$work/cli.json" <<'PY' || fail "fit: plugin and CLI differ"
+import json, sys
+a, b, plain = (json.load(open(p)) for p in sys.argv[1:4])
+for k in ("faces", "vertices", "nonconvex_faces", "flipped_faces"):
+    assert a[k] == b[k], (k, a[k], b[k])
+assert abs(a["rms_e3"] - b["rms_e3"]) <= 0.01 * a["rms_e3"], (a["rms_e3"], b["rms_e3"])
+assert b["rms_e3"] < 0.8 * plain["rms_e3"], (b["rms_e3"], plain["rms_e3"])
+print("ok: fit to the input: plugin and CLI agree, RMS", plain["rms_e3"], "->", b["rms_e3"])
+PY
+else
+  fail "fit script failed on the bunny"; cat "$work/server.log"
 fi
 
 # 4. Bad input: the filter refuses with our message, and MeshLab does not crash.

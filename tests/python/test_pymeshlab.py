@@ -178,6 +178,14 @@ def test_same_result_as_the_cli(bunny_path, cli, tmp_path):
         assert q[ours] == pytest.approx(stats[theirs], rel=0.01), ours
 
 
+def test_fit_to_input_same_as_the_cli_and_closer(bunny_path, cli, tmp_path):
+    plain, _ = plugin_and_cli(bunny_path, cli, tmp_path, {"targetfacenum": 3000}, ["--faces", "3000"])
+    q, stats = plugin_and_cli(bunny_path, cli, tmp_path, {"targetfacenum": 3000, "fittoinput": True},
+                              ["--faces", "3000", "--fit-to-input"])
+    assert q["rms_e3"] == pytest.approx(stats["rms_e3"], rel=0.01)
+    assert q["rms_e3"] < 0.8 * plain["rms_e3"]
+
+
 def test_adaptive_automatic_halting_stops_where_the_cli_does(bunny_path, cli, tmp_path):
     # Same input, same fitmaps, same loop: the filter and the CLI halt at the same count.
     plugin_and_cli(bunny_path, cli, tmp_path, {"adaptive": True, "autohalt": True}, ["--adaptive", "--auto-halt"])

@@ -5,6 +5,7 @@
 
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/reference/reference_surface.h"
+#include "quadsimp/simplify/surface_fit.h"
 
 namespace qs {
 
@@ -38,7 +39,9 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
     opt.m_factor = p.m_factor;
     opt.halt_share = p.halt_share;
   }
-  return simplify(in.quads, ref, opt);
+  SimplifyReport r = simplify(in.quads, ref, opt);
+  if (p.fit_to_input && !r.cancelled) fit_to_surface(in.quads, ref);
+  return r;
 }
 
 }  // namespace qs

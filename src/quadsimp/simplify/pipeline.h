@@ -16,12 +16,14 @@ struct SimplifyParams {
   double halt_share = 0.05;      //!< auto_halt: see SimplifyOptions::halt_share
   bool preserve_boundary = false;
   bool fast = false;             //!< one optimisation pass per collapse (the paper's loop)
+  bool fit_to_input = false;     //!< afterwards, fit_to_surface(): vertices leave the input
 };
 
 //! Checks a parameter combination; returns "" or the reason it is refused.
 std::string check_params(const SimplifyParams& params);
 
-//! The whole job on prepared input: fitmaps on `ref` in adaptive mode, then simplify().
+//! The whole job on prepared input: fitmaps on `ref` in adaptive mode, then simplify(),
+//! then fit_to_surface() if asked.
 //! `ref` is the reference surface of `in.reference` (the caller keeps it for measuring
 //! the result). `in.quads` is simplified in place. \throw std::invalid_argument for
 //! parameters check_params() refuses; Cancelled when `progress` says stop.

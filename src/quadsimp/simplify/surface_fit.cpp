@@ -1,0 +1,179 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/simplify/surface_fit.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "quadsimp/mesh/quad_geometry.h"
+#include "quadsimp/metrics/metrics.h"
+
+namespace qs {
+namespace {
+
+double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
+
+// Normal equations of one vertex: its step along its normal is num / den.
+struct Normal1 {
+  double num = 0, den = 0;
+  void add(double weight, double corner_weight, double residual) {
+    num += weight * corner_weight * residual;
+    den += weight * corner_weight * corner_weight;
+  }
+};
+
+}  // namespace
+
+SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const SurfaceFitOptions& opt) {
+  SurfaceFitReport rep;
+  std::vector<Index> live;  // compact index (triangulate()'s) -> vertex
+  for (Index v = 0; v < m.vertex_capacity(); ++v)
+    if (m.is_vertex_live(v)) live.push_back(v);
+  const Index n = Index(live.size());
+  if (n == 0) return rep;
+
+  const TriMesh& in = ref.mesh();
+  std::vector<double> in_weight(in.n_vertices(), 0.0);  // a third of the area around each
+  double in_area = 0;
+  for (const auto& t : in.faces) {
+    const double a = triangle_area(in.positions[t[0]], in.positions[t[1]], in.positions[t[2]]);
+    for (Index c : t) in_weight[c] += a / 3;
+    in_area += a;
+  }
+  // Output samples at about the input's vertex density, so that both sides weigh alike.
+  const double area_per_sample = in_area / std::max<Index>(in.n_vertices(), 1);
+
+  // A step may not turn a face against its normal at the start, against the input
+  // under its centre (the check the quality report makes), nor make a convex face
+  // non-convex; faces that start out that way are not held to it.
+  struct FaceStart {
+    Vec3 normal = Vec3::Zero();
+    bool convex = false, agrees = false;
+  };
+  std::vector<FaceStart> face_start(m.face_capacity());
+  std::vector<Index> faces;
+  for (Index f = 0; f < m.face_capacity(); ++f)
+    if (m.is_face_live(f)) faces.push_back(f);
+  auto face_ok = [&](Index f, const FaceStart& s) {
+    const auto c = m.face_vertices(f);
+    const Vec3 p[4] = {m.position(c[0]), m.position(c[1]), m.position(c[2]), m.position(c[3])};
+    const Vec3 nf = quad_normal(p[0], p[1], p[2], p[3]);
+    if (!keeps_orientation(nf, s.normal) || (s.convex && !quad_is_convex(p[0], p[1], p[2], p[3], nf))) return false;
+    if (!s.agrees) return true;
+    const SurfacePoint foot = ref.closest(0.25 * (p[0] + p[1] + p[2] + p[3]));
+    return !foot.found() || ref.normal_at(foot).dot(nf) > 0;
+  };
+  tbb::parallel_for(std::size_t(0), faces.size(), [&](std::size_t i) {
+    const Index f = faces[i];
+    const auto c = m.face_vertices(f);
+    FaceStart& s = face_start[f];
+    s.normal = m.face_area_normal(f);
+    s.convex = quad_is_convex(m.position(c[0]), m.position(c[1]), m.position(c[2]), m.position(c[3]));
+    s.agrees = true;
+    s.agrees = face_ok(f, s);
+  });
+  std::vector<Vec3> start(n), normal(n);
+  for (Index i = 0; i < n; ++i) start[i] = m.position(live[i]);
+  std::vector<Index> compact(m.vertex_capacity(), kNone);
+  for (Index i = 0; i < n; ++i) compact[live[i]] = i;
+
+  std::vector<Normal1> eq(n);
+  std::vector<SurfacePoint> hits;
+  std::vector<Vec3> samples, feet;
+  std::vector<double> sample_weight;
+  std::vector<std::array<double, 3>> sample_bary;
+  std::vector<Index> sample_tri;
+  for (int it = 0; it < opt.iterations; ++it) {
+    const TriMesh out = triangulate(m);
+    for (Index i = 0; i < n; ++i) {
+      Vec3 s = Vec3::Zero();
+      m.for_each_outgoing(live[i], [&](Index h) { s += m.face_area_normal(QuadMesh::face(h)); });
+      normal[i] = s.normalized();
+    }
+    std::fill(eq.begin(), eq.end(), Normal1{});
+
+    // Reference -> quads: every input vertex pulls the three corners of its closest
+    // output triangle by their barycentric weights.
+    {
+      const ReferenceSurface out_surface(out);
+      hits.resize(in.n_vertices());
+      tbb::parallel_for(Index(0), in.n_vertices(), [&](Index i) { hits[i] = out_surface.closest(in.positions[i]); });
+      for (Index i = 0; i < in.n_vertices(); ++i) {  // serial: the same sums whatever the threads
+        const SurfacePoint& s = hits[i];
+        if (!s.found()) continue;
+        const auto& t = out.faces[s.face];
+        const double w[3] = {1 - s.u - s.v, s.u, s.v};
+        for (int k = 0; k < 3; ++k) eq[t[k]].add(in_weight[i], w[k], (in.positions[i] - s.point).dot(normal[t[k]]));
+      }
+    }
+
+    // Quads -> reference: the centroids of a k x k split of each output triangle.
+    samples.clear(), sample_weight.clear(), sample_bary.clear(), sample_tri.clear();
+    for (Index f = 0; f < out.n_faces(); ++f) {
+      const auto& t = out.faces[f];
+      const double a = triangle_area(out.positions[t[0]], out.positions[t[1]], out.positions[t[2]]);
+      const int k = std::clamp(int(std::ceil(std::sqrt(a / area_per_sample))), 1, 16);
+      for (int i = 0; i < k; ++i)
+        for (int j = 0; i + j < k; ++j)
+          for (int down = 0; down < (i + j + 1 < k ? 2 : 1); ++down) {
+            const double u = (i + (down ? 2.0 : 1.0) / 3) / k, v = (j + (down ? 2.0 : 1.0) / 3) / k;
+            const std::array<double, 3> b = {1 - u - v, u, v};
+            samples.push_back(b[0] * out.positions[t[0]] + b[1] * out.positions[t[1]] + b[2] * out.positions[t[2]]);
+            sample_weight.push_back(a / (k * k));
+            sample_bary.push_back(b);
+            sample_tri.push_back(f);
+          }
+    }
+    feet.resize(samples.size());
+    tbb::parallel_for(std::size_t(0), samples.size(), [&](std::size_t i) { feet[i] = ref.closest(samples[i]).point; });
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const auto& t = out.faces[sample_tri[i]];
+      for (int k = 0; k < 3; ++k)
+        eq[t[k]].add(sample_weight[i], sample_bary[i][k], (feet[i] - samples[i]).dot(normal[t[k]]));
+    }
+
+    // All vertices take their damped steps at once. The faces a step spoils have
+    // their corners' steps halved, twice, then dropped, until every face passes.
+    std::vector<Vec3> from(n), step(n);
+    std::vector<double> scale(n, 1.0);
+    for (Index i = 0; i < n; ++i) {
+      from[i] = m.position(live[i]);
+      double edges = 0;
+      int count = 0;
+      m.for_each_outgoing(live[i], [&](Index h) {
+        edges += (m.position(m.to(h)) - from[i]).norm();
+        ++count;
+      });
+      const double limit = opt.max_step * edges / std::max(count, 1);
+      const double t = eq[i].den > 0 ? std::clamp(opt.damping * eq[i].num / eq[i].den, -limit, limit) : 0.0;
+      step[i] = t * normal[i];
+    }
+    std::vector<Index> check = faces;
+    std::vector<char> bad;
+    while (!check.empty()) {
+      for (Index i = 0; i < n; ++i) m.position(live[i]) = from[i] + scale[i] * step[i];
+      bad.assign(check.size(), 0);
+      tbb::parallel_for(std::size_t(0), check.size(), [&](std::size_t j) { bad[j] = !face_ok(check[j], face_start[check[j]]); });
+      std::vector<Index> again;
+      for (std::size_t j = 0; j < check.size(); ++j) {
+        if (!bad[j]) continue;
+        for (Index v : m.face_vertices(check[j])) {
+          double& s = scale[compact[v]];
+          if (s == 0) continue;
+          if (s == 1.0) ++rep.shortened;
+          s = s > 0.3 ? 0.5 * s : 0.0;
+          m.for_each_outgoing(v, [&](Index h) { again.push_back(QuadMesh::face(h)); });
+        }
+      }
+      std::sort(again.begin(), again.end());
+      again.erase(std::unique(again.begin(), again.end()), again.end());
+      check.swap(again);
+    }
+  }
+  for (Index i = 0; i < n; ++i) rep.moved_max = std::max(rep.moved_max, (m.position(live[i]) - start[i]).norm());
+  rep.moved_max /= ref.bbox_diagonal();
+  return rep;
+}
+
+}  // namespace qs
