@@ -23,6 +23,33 @@ struct Normal1 {
   }
 };
 
+// Points on a triangle mesh: the centroids of a k x k split of each triangle, k chosen
+// so that each sample covers about `area_per_sample`.
+struct TriangleSamples {
+  std::vector<Vec3> points;
+  std::vector<double> weight;                // area each one stands for
+  std::vector<std::array<double, 3>> bary;  // weights of the triangle's corners
+  std::vector<Index> triangle;
+
+  void build(const TriMesh& t, double area_per_sample) {
+    points.clear(), weight.clear(), bary.clear(), triangle.clear();
+    for (Index f = 0; f < t.n_faces(); ++f) {
+      const Vec3 c[3] = {t.positions[t.faces[f][0]], t.positions[t.faces[f][1]], t.positions[t.faces[f][2]]};
+      const double a = triangle_area(c[0], c[1], c[2]);
+      const int k = std::clamp(int(std::ceil(std::sqrt(a / area_per_sample))), 1, 16);
+      for (int i = 0; i < k; ++i)
+        for (int j = 0; i + j < k; ++j)
+          for (int down = 0; down < (i + j + 1 < k ? 2 : 1); ++down) {
+            const double u = (i + (down ? 2.0 : 1.0) / 3) / k, v = (j + (down ? 2.0 : 1.0) / 3) / k;
+            bary.push_back({1 - u - v, u, v});
+            points.push_back((1 - u - v) * c[0] + u * c[1] + v * c[2]);
+            weight.push_back(a / (k * k));
+            triangle.push_back(f);
+          }
+    }
+  }
+};
+
 }  // namespace
 
 SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const SurfaceFitOptions& opt) {
@@ -80,10 +107,8 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
 
   std::vector<Normal1> eq(n);
   std::vector<SurfacePoint> hits;
-  std::vector<Vec3> samples, feet;
-  std::vector<double> sample_weight;
-  std::vector<std::array<double, 3>> sample_bary;
-  std::vector<Index> sample_tri;
+  TriangleSamples samples;
+  std::vector<Vec3> feet;
   for (int it = 0; it < opt.iterations; ++it) {
     const TriMesh out = triangulate(m);
     for (Index i = 0; i < n; ++i) {
@@ -108,29 +133,14 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
       }
     }
 
-    // Quads -> reference: the centroids of a k x k split of each output triangle.
-    samples.clear(), sample_weight.clear(), sample_bary.clear(), sample_tri.clear();
-    for (Index f = 0; f < out.n_faces(); ++f) {
-      const auto& t = out.faces[f];
-      const double a = triangle_area(out.positions[t[0]], out.positions[t[1]], out.positions[t[2]]);
-      const int k = std::clamp(int(std::ceil(std::sqrt(a / area_per_sample))), 1, 16);
-      for (int i = 0; i < k; ++i)
-        for (int j = 0; i + j < k; ++j)
-          for (int down = 0; down < (i + j + 1 < k ? 2 : 1); ++down) {
-            const double u = (i + (down ? 2.0 : 1.0) / 3) / k, v = (j + (down ? 2.0 : 1.0) / 3) / k;
-            const std::array<double, 3> b = {1 - u - v, u, v};
-            samples.push_back(b[0] * out.positions[t[0]] + b[1] * out.positions[t[1]] + b[2] * out.positions[t[2]]);
-            sample_weight.push_back(a / (k * k));
-            sample_bary.push_back(b);
-            sample_tri.push_back(f);
-          }
-    }
-    feet.resize(samples.size());
-    tbb::parallel_for(std::size_t(0), samples.size(), [&](std::size_t i) { feet[i] = ref.closest(samples[i]).point; });
-    for (std::size_t i = 0; i < samples.size(); ++i) {
-      const auto& t = out.faces[sample_tri[i]];
+    // Quads -> reference, from regular samples of the output triangles.
+    samples.build(out, area_per_sample);
+    feet.resize(samples.points.size());
+    tbb::parallel_for(std::size_t(0), feet.size(), [&](std::size_t i) { feet[i] = ref.closest(samples.points[i]).point; });
+    for (std::size_t i = 0; i < feet.size(); ++i) {
+      const auto& t = out.faces[samples.triangle[i]];
       for (int k = 0; k < 3; ++k)
-        eq[t[k]].add(sample_weight[i], sample_bary[i][k], (feet[i] - samples[i]).dot(normal[t[k]]));
+        eq[t[k]].add(samples.weight[i], samples.bary[i][k], (feet[i] - samples.points[i]).dot(normal[t[k]]));
     }
 
     // All vertices take their damped steps at once. The faces a step spoils have
