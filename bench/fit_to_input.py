@@ -3,7 +3,8 @@
 with automatic halting, each without and with the fit, on ../shared/datasets.
 
 Prints one markdown row per run: distances (symmetric RMS and Hausdorff, and the RMS of
-each direction), time, and the faces the quality report flags, before -> after.
+each direction), time, and the faces the quality report flags (non-convex, flipped against the input,
+bent past 90 degrees), before -> after.
 
     python3 bench/fit_to_input.py [--quadsimp build/src/quadsimp] [--datasets ../shared/datasets]
 """
@@ -24,7 +25,7 @@ def main():
     args = parse_args(__doc__, list(PAPER) + ["armadillo"])
     print(f"Machine: {machine()}; distances sampled with {args.samples} points per surface plus vertices.\n")
     print("| model | mode | #faces | RMS e-3 | Hausdorff e-3 | RMS in->out e-3 | RMS out->in e-3 | time s "
-          "| non-convex / flipped |")
+          "| non-convex / flipped / folded |")
     print("|---|---|---|---|---|---|---|---|---|")
     runs = [(m, "uniform", row[0]) for m in args.models if m in PAPER for row in PAPER[m]]
     runs += [(m, "adaptive", 0) for m in ADAPTIVE if m in args.models]
@@ -45,7 +46,8 @@ def main():
 
         print(f"| {model} | {mode} | {b['faces']} | {pair('rms_e3')} | {pair('hausdorff_e3')} "
               f"| {pair('rms_from_ref_e3')} | {pair('rms_to_ref_e3')} | {a['seconds']:.2f} -> {b['seconds']:.2f} "
-              f"| {a['nonconvex_faces']} / {a['flipped_faces']} -> {b['nonconvex_faces']} / {b['flipped_faces']} |")
+              f"| {a['nonconvex_faces']} / {a['flipped_faces']} / {a['folded_faces']} "
+              f"-> {b['nonconvex_faces']} / {b['flipped_faces']} / {b['folded_faces']} |")
         sys.stdout.flush()
     if gains:
         print(f"\nRMS change over {len(gains)} runs: mean {100 * sum(gains) / len(gains):+.1f}%, "

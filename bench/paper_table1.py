@@ -74,7 +74,7 @@ def main():
           f"{args.samples} points per surface plus vertices.\n")
     print("| model | input quads | #faces | time s (paper) | val max (paper) | reg % (paper) | reg % val-4 only "
           "| homeo min (paper) | homeo max (paper) | Hausdorff e-3 | RMS e-3 | mean out->in e-3 (paper Dist) "
-          "| non-convex / flipped |")
+          "| non-convex / flipped / folded |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for model in args.models:
         mesh = os.path.join(args.datasets, model + ".ply")
@@ -90,7 +90,7 @@ def main():
                   f"| {r['regular_percent']:.1f} ({reg}) | {r['valence4_percent']:.1f} "
                   f"| {r['homeometry_min']:.2f} ({hmin}) | {r['homeometry_max']:.2f} ({hmax}) "
                   f"| {r['hausdorff_e3']:.2f} | {r['rms_e3']:.2f} | {r['mean_to_ref_e3']:.2f} ({dist}) "
-                  f"| {r['nonconvex_faces']} / {r['flipped_faces']} |")
+                  f"| {r['nonconvex_faces']} / {r['flipped_faces']} / {r['folded_faces']} |")
             sys.stdout.flush()
 
 

@@ -28,14 +28,14 @@ PAPER = {
 }
 
 HEADER = ("| model | mode | #faces (paper) | time s (paper) | val max (paper) | reg % (paper) | homeo min (paper) "
-          "| homeo max (paper) | Hausdorff e-3 | RMS e-3 (paper Dist) | mean out->in e-3 | projectability % |")
+          "| homeo max (paper) | Hausdorff e-3 | RMS e-3 (paper Dist) | mean out->in e-3 | projectability % | folded |")
 
 
 def row(model, mode, r, p):
     return (f"| {model} | {mode} | {r['faces']} ({p[0]}) | {r['seconds']:.2f} ({p[1]}) | {r['max_valence']} ({p[2]}) "
             f"| {r['regular_percent']:.1f} ({p[3]}) | {r['homeometry_min']:.2f} ({p[4]}) | {r['homeometry_max']:.2f} ({p[5]}) "
             f"| {r['hausdorff_e3']:.2f} | {r['rms_e3']:.2f} ({p[6]}) | {r['mean_to_ref_e3']:.2f} "
-            f"| {100 * r['projectability']:.2f} |")
+            f"| {100 * r['projectability']:.2f} | {r['folded_faces']} |")
 
 
 def gain(a, u, key):
@@ -55,12 +55,12 @@ def main():
     for title, halting in tables:
         print(f"### {title}\n")
         print(HEADER)
-        print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         summary = []
         for model in args.models:
             mesh = os.path.join(args.datasets, model + ".ply")
             if not os.path.exists(mesh):
-                print(f"| {model} | - | not in the datasets | | | | | | | | | |")
+                print(f"| {model} | - | not in the datasets | | | | | | | | | | |")
                 continue
             pa, pu = PAPER[model]
             if halting is None:

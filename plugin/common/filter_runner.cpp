@@ -105,6 +105,7 @@ void run_quality(const MeshFile& quads, const std::string& quads_name, const Mes
               {"homeometry_max", qq.homeometry_max},
               {"nonconvex_faces", qq.nonconvex_faces},
               {"flipped_faces", qq.flipped_faces},
+              {"folded_faces", qq.folded_faces},
               {"hausdorff_e3", 1e3 * d.hausdorff},
               {"rms_e3", 1e3 * d.rms},
               {"mean_to_reference_e3", 1e3 * d.mean_to_ref},
@@ -115,8 +116,8 @@ void run_quality(const MeshFile& quads, const std::string& quads_name, const Mes
               {"reference_diagonal", ref.bbox_diagonal()}};
   o.log.push_back(quads_name + format(": %g quads, max valence %g, regular %.1f%%, ", qq.faces, qq.max_valence,
                                       qq.regular_percent) +
-                  format("homeometry %.3f .. %.3f, %g non-convex", qq.homeometry_min, qq.homeometry_max,
-                         qq.nonconvex_faces));
+                  format("homeometry %.3f .. %.3f, %g non-convex, %g folded", qq.homeometry_min, qq.homeometry_max,
+                         qq.nonconvex_faces, qq.folded_faces));
   o.log.push_back("distance to " + reference_name +
                   format(" (x1e-3 of its diagonal): Hausdorff %.3f, RMS %.3f, mean quads->reference %.3f, "
                          "projectability %.2f%%",

@@ -40,7 +40,7 @@ const std::vector<FilterSpec>& filter_specs() {
       {kQuality, "Quad Mesh Quality", "get_quad_mesh_quality_measures",
        "Measures a pure quad mesh: face and vertex counts, maximum valence, share of regular vertices (valence "
        "4 inside, 3 on the border), homeometry (edge length / mean edge and diagonal / (sqrt(2) mean edge), ideal "
-       "1), non-convex faces, and its distance to a reference layer (symmetric Hausdorff and RMS, and the "
+       "1), non-convex faces, faces bent by more than 90 degrees whichever diagonal splits them, and its distance to a reference layer (symmetric Hausdorff and RMS, and the "
        "one-sided mean from the quads to the reference, in units of 1e-3 of the reference's bounding-box "
        "diagonal). The values are printed in the log and returned."},
   };

@@ -45,7 +45,8 @@ void print_quality(const QuadQuality& q, const SurfaceDistance* d) {
               q.max_valence, q.max_valence_interior, q.regular_percent, q.valence4_percent);
   std::printf("homeometry: min %.3f max %.3f (edges only: %.3f .. %.3f)\n", q.homeometry_min, q.homeometry_max,
               q.edge_ratio_min, q.edge_ratio_max);
-  std::printf("non-convex faces %u, flipped faces %u\n", q.nonconvex_faces, q.flipped_faces);
+  std::printf("non-convex faces %u, flipped faces %u, folded faces %u (bent over 90 degrees)\n", q.nonconvex_faces,
+              q.flipped_faces, q.folded_faces);
   if (d)
     std::printf("distance x1e-3 of the bbox diagonal: Hausdorff %.3f, RMS %.3f, mean out->in %.3f "
                 "(max out->in %.3f, in->out %.3f), projectability %.2f%%\n",

@@ -132,7 +132,7 @@ def test_quality_on_a_generated_open_mesh():
     ms.add_mesh(open_grid(), "grid")
     ms.meshing_quad_mesh_simplification(targetfacenum=500)
     q = ms.get_quad_mesh_quality_measures(referencemesh=0, samplenum=50000)
-    assert q["faces"] == 500 and q["nonconvex_faces"] == 0
+    assert q["faces"] == 500 and q["nonconvex_faces"] == 0 and q["folded_faces"] == 0
     assert q["rms_e3"] < 5 and q["projectability"] > 0.99
     # A triangle layer is refused: the quality filter measures quads only.
     with pytest.raises(pymeshlab.PyMeshLabException) as e:

@@ -11,6 +11,7 @@
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/tri_to_quad.h"
 #include "quadsimp/io/load_input.h"
+#include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/metrics/metrics.h"
 
 using namespace qs;
@@ -462,6 +463,20 @@ TEST(Metrics, regular_grid_and_cube) {
   EXPECT_EQ(c.faces, 6u);
   EXPECT_EQ(c.max_valence, 3);
   EXPECT_DOUBLE_EQ(c.regular_percent, 0.0);
+}
+
+TEST(Metrics, a_quad_bent_past_90_degrees_is_folded) {
+  // p3 below the edge p0-p1 and raised: 120 degrees between the triangles' normals,
+  // whichever diagonal splits it. Pulled back into the plane, it is a flat square.
+  const Vec3 p0(0, 0, 0), p1(1, 0, 0), p2(1, 1, 0), bent(0, -1, 1), flat(0, 1, 0);
+  EXPECT_TRUE(quad_folds(p0, p1, p2, bent));
+  EXPECT_NEAR(quad_fold_cos(p0, p1, p2, bent), -0.5, 1e-12);
+  EXPECT_FALSE(quad_folds(p0, p1, p2, flat));
+  EXPECT_DOUBLE_EQ(quad_fold_cos(p0, p1, p2, flat), 1.0);
+  EXPECT_FALSE(quad_folds(p0, p1, p2, Vec3(0, 0, 1)));  // bent along one diagonal only
+  EXPECT_EQ(quad_quality(QuadMesh::from_faces({p0, p1, p2, bent}, {{0, 1, 2, 3}})).folded_faces, 1u);
+  EXPECT_EQ(quad_quality(QuadMesh::from_faces({p0, p1, p2, flat}, {{0, 1, 2, 3}})).folded_faces, 0u);
+  EXPECT_EQ(quad_quality(quad_grid(6, 5)).folded_faces, 0u);
 }
 
 TEST(Metrics, offset_sphere_distance_is_the_offset) {

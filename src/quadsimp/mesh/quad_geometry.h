@@ -2,6 +2,9 @@
 // Small geometric predicates on quads given by their four corner positions.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "quadsimp/util/types.h"
 
 namespace qs {
@@ -29,6 +32,24 @@ inline bool quad_is_convex(const Vec3& p0, const Vec3& p1, const Vec3& p2, const
 }
 inline bool quad_is_convex(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
   return quad_is_convex(p0, p1, p2, p3, quad_normal(p0, p1, p2, p3));
+}
+
+//! True when the quad bends by more than 90 degrees whichever diagonal splits it: the
+//! normals of its two triangles point apart for both splits (no square roots).
+inline bool quad_folds(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+  return (p1 - p0).cross(p2 - p0).dot((p2 - p0).cross(p3 - p0)) < 0 &&
+         (p1 - p0).cross(p3 - p0).dot((p2 - p1).cross(p3 - p1)) < 0;
+}
+
+//! Cosine of the angle between the normals of the quad's two triangles, for the
+//! diagonal that bends it least: 1 when planar, below 0 when quad_folds().
+inline double quad_fold_cos(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+  auto cos_between = [](const Vec3& a, const Vec3& b) {
+    const double d = std::sqrt(a.squaredNorm() * b.squaredNorm());
+    return d > 0 ? a.dot(b) / d : 1.0;
+  };
+  return std::max(cos_between((p1 - p0).cross(p2 - p0), (p2 - p0).cross(p3 - p0)),
+                  cos_between((p1 - p0).cross(p3 - p0), (p2 - p1).cross(p3 - p1)));
 }
 
 }  // namespace qs

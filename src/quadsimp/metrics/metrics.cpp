@@ -120,6 +120,7 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
       q.homeometry_max = std::max(q.homeometry_max, d);
     }
     q.nonconvex_faces += !quad_is_convex(p[0], p[1], p[2], p[3]);
+    q.folded_faces += quad_folds(p[0], p[1], p[2], p[3]);
     if (ref) {
       const Vec3 n = quad_normal(p[0], p[1], p[2], p[3]);
       const SurfacePoint s = ref->closest(0.25 * (p[0] + p[1] + p[2] + p[3]));
@@ -172,10 +173,11 @@ std::string to_json(const QuadQuality& q, const SurfaceDistance* d) {
                         "{\"faces\": %u, \"vertices\": %u, \"pure_quad\": true, \"max_valence\": %d, "
                         "\"max_valence_interior\": %d, \"regular_percent\": %.3f, \"valence4_percent\": %.3f, "
                         "\"homeometry_min\": %.4f, \"homeometry_max\": %.4f, \"edge_ratio_min\": %.4f, "
-                        "\"edge_ratio_max\": %.4f, \"mean_edge\": %.6g, \"nonconvex_faces\": %u, \"flipped_faces\": %u",
+                        "\"edge_ratio_max\": %.4f, \"mean_edge\": %.6g, \"nonconvex_faces\": %u, \"flipped_faces\": %u, "
+                        "\"folded_faces\": %u",
                         q.faces, q.vertices, q.max_valence, q.max_valence_interior, q.regular_percent,
                         q.valence4_percent, q.homeometry_min, q.homeometry_max, q.edge_ratio_min, q.edge_ratio_max,
-                        q.mu, q.nonconvex_faces, q.flipped_faces);
+                        q.mu, q.nonconvex_faces, q.flipped_faces, q.folded_faces);
   std::string s(buf, std::size_t(n));
   if (d) {
     n = std::snprintf(buf, sizeof buf,

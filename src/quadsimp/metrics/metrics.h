@@ -21,6 +21,7 @@ struct QuadQuality {
   double edge_ratio_min = 0, edge_ratio_max = 0;  //!< edges only
   Index nonconvex_faces = 0;     //!< some corner turns against the face normal
   Index flipped_faces = 0;       //!< normal against the reference surface's (needs ref)
+  Index folded_faces = 0;        //!< bent by more than 90 degrees along both diagonals
 };
 
 QuadQuality quad_quality(const QuadMesh& mesh, const ReferenceSurface* ref = nullptr);

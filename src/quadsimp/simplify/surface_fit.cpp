@@ -72,11 +72,13 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
   const double area_per_sample = in_area / std::max<Index>(in.n_vertices(), 1);
 
   // A step may not turn a face against its normal at the start, against the input
-  // under its centre (the check the quality report makes), nor make a convex face
-  // non-convex; faces that start out that way are not held to it.
+  // under its centre (the check the quality report makes), make a convex face
+  // non-convex, or bend a face past 90 degrees (or further, if it started so); faces
+  // that start out that way are not held to the first three.
   struct FaceStart {
     Vec3 normal = Vec3::Zero();
     bool convex = false, agrees = false;
+    double fold_cos = 1;
   };
   std::vector<FaceStart> face_start(m.face_capacity());
   std::vector<Index> faces;
@@ -87,6 +89,8 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
     const Vec3 p[4] = {m.position(c[0]), m.position(c[1]), m.position(c[2]), m.position(c[3])};
     const Vec3 nf = quad_normal(p[0], p[1], p[2], p[3]);
     if (!keeps_orientation(nf, s.normal) || (s.convex && !quad_is_convex(p[0], p[1], p[2], p[3], nf))) return false;
+    if (quad_folds(p[0], p[1], p[2], p[3]) && quad_fold_cos(p[0], p[1], p[2], p[3]) < std::min(s.fold_cos, 0.0))
+      return false;
     if (!s.agrees) return true;
     const SurfacePoint foot = ref.closest(0.25 * (p[0] + p[1] + p[2] + p[3]));
     return !foot.found() || ref.normal_at(foot).dot(nf) > 0;
@@ -97,6 +101,7 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
     FaceStart& s = face_start[f];
     s.normal = m.face_area_normal(f);
     s.convex = quad_is_convex(m.position(c[0]), m.position(c[1]), m.position(c[2]), m.position(c[3]));
+    s.fold_cos = quad_fold_cos(m.position(c[0]), m.position(c[1]), m.position(c[2]), m.position(c[3]));
     s.agrees = true;
     s.agrees = face_ok(f, s);
   });
