@@ -18,8 +18,7 @@ struct SurfaceFitOptions {
 
 struct SurfaceFitReport {
   double moved_max = 0;   //!< largest total move of a vertex, x the reference's bbox diagonal
-  Index shortened = 0;    //!< vertex steps shortened or dropped because a face would fold
-                          //!< or turn non-convex
+  Index shortened = 0;    //!< vertex steps shortened or dropped to keep a face sound
 };
 
 //! Moves each vertex along its normal to lower the squared distance between the quads
@@ -29,9 +28,10 @@ struct SurfaceFitReport {
 //! flat faces between points of a curved surface lie on the inside of its bend, and
 //! corners moved out by part of the bend let the faces cross it instead. Over the
 //! paper's Table 1 rows and five automatic-halting runs the RMS distance fell by 16 to
-//! 45% (mean 32%; bench/RESULTS.md). A step that would fold a face, turn a convex one
-//! non-convex, or turn one against the reference under its centre is tried at half
-//! and a quarter, then dropped. The connectivity is not changed. Deterministic.
+//! 45% (mean 32%; bench/RESULTS.md). A step that would turn a face over, make a convex
+//! one non-convex, turn one against the reference under its centre, or bend one past 90
+//! degrees (further, if it already was: quad_folds()) is tried at half and a quarter,
+//! then dropped. The connectivity is not changed. Deterministic.
 SurfaceFitReport fit_to_surface(QuadMesh& mesh, const ReferenceSurface& ref, const SurfaceFitOptions& options = {});
 
 }  // namespace qs
