@@ -43,12 +43,13 @@ def border_points(mesh):
     return {tuple(np.round(mesh.vertex_matrix()[v], 9)) for v in ids}
 
 
-@pytest.mark.parametrize("preserve", [False, True])
-def test_simplification_on_a_generated_open_mesh(preserve):
+@pytest.mark.parametrize("preserve, fit", [(False, False), (True, False), (True, True)])
+def test_simplification_on_a_generated_open_mesh(preserve, fit):
+    # With preserveboundary the border stays exactly, the fit to the input included.
     ms = pymeshlab.MeshSet()
     grid = open_grid()
     ms.add_mesh(grid, "grid")
-    ms.meshing_quad_mesh_simplification(targetfacenum=800, preserveboundary=preserve)
+    ms.meshing_quad_mesh_simplification(targetfacenum=800, preserveboundary=preserve, fittoinput=fit)
     out = ms.current_mesh()
     assert is_pure_quad(out)
     assert len(out.polygonal_face_list()) == 800

@@ -70,6 +70,33 @@ TEST(SurfaceFit, plane_stays_put) {
   EXPECT_EQ(r.shortened, 0u);
 }
 
+TEST(SurfaceFit, keeps_the_border_when_asked) {
+  // A bumpy open grid: the fit moves every vertex but, with keep_border, the border ones.
+  TriMesh fine = tri_grid(40, 40, 0.3), coarse = tri_grid(8, 8, 0.3);
+  clean(fine);
+  clean(coarse);
+  const ReferenceSurface ref(fine);
+  for (bool keep : {false, true}) {
+    SCOPED_TRACE(keep ? "keep_border" : "free border");
+    QuadMesh q = tri_to_quad(coarse);
+    const QuadMesh before = q;
+    SurfaceFitOptions opt;
+    opt.keep_border = keep;
+    fit_to_surface(q, ref, opt);
+    expect_sound(before, q, ref);
+    Index border_moved = 0, inside_moved = 0;
+    for (Index v = 0; v < q.n_vertices(); ++v) {
+      const bool moved = q.position(v) != before.position(v);
+      (q.is_border_vertex(v) ? border_moved : inside_moved) += moved;
+    }
+    EXPECT_GT(inside_moved, 0u);
+    if (keep)
+      EXPECT_EQ(border_moved, 0u);
+    else
+      EXPECT_GT(border_moved, 0u);
+  }
+}
+
 TEST(SurfaceFit, deterministic) {
   SphereCase a, b;
   const ReferenceSurface ref(a.fine);

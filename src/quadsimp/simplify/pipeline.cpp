@@ -40,7 +40,11 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
     opt.halt_share = p.halt_share;
   }
   SimplifyReport r = simplify(in.quads, ref, opt);
-  if (p.fit_to_input && !r.cancelled) fit_to_surface(in.quads, ref);
+  if (p.fit_to_input && !r.cancelled) {
+    SurfaceFitOptions fit;
+    fit.keep_border = p.preserve_boundary;
+    fit_to_surface(in.quads, ref, fit);
+  }
   return r;
 }
 

@@ -161,7 +161,8 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
         ++count;
       });
       const double limit = opt.max_step * edges / std::max(count, 1);
-      const double t = eq[i].den > 0 ? std::clamp(opt.damping * eq[i].num / eq[i].den, -limit, limit) : 0.0;
+      const bool fixed = opt.keep_border && m.is_border_vertex(live[i]);
+      const double t = eq[i].den > 0 && !fixed ? std::clamp(opt.damping * eq[i].num / eq[i].den, -limit, limit) : 0.0;
       step[i] = t * normal[i];
     }
     std::vector<Index> check = faces;

@@ -14,6 +14,8 @@ struct SurfaceFitOptions {
   double damping = 0.7;
   //! Largest move per step, as a share of the vertex's mean edge length.
   double max_step = 0.25;
+  //! Border vertices stay where they are (SimplifyOptions::preserve_boundary).
+  bool keep_border = false;
 };
 
 struct SurfaceFitReport {
