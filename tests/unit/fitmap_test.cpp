@@ -11,6 +11,7 @@
 #include "quadsimp/convert/tri_to_quad.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/metrics/metrics.h"
+#include "quadsimp/simplify/pipeline.h"
 
 using namespace qs;
 using namespace qs::fixtures;
@@ -217,6 +218,25 @@ TEST(Adaptive, auto_halt_stops_once_the_m_fitmap_blocks_its_share) {
   // large) lower faces along the equator that touch it, is left to collapse.
   EXPECT_GT(until_nothing.blocked_share, 0.45);
   EXPECT_LT(until_nothing.blocked_share, 0.8);
+}
+
+TEST(Adaptive, no_quad_bends_over_the_gargoyles_thin_parts) {
+  // Automatic halting on the gargoyle, as the CLI and the filters run it: without
+  // refuse_folds 11 quads ended bent past 90 degrees over its thin parts.
+  const std::string path = shared_dataset("gargoyle");
+  if (path.empty()) GTEST_SKIP() << "../shared/datasets not found";
+  const Input in = load_input(path);
+  const ReferenceSurface ref(in.reference);
+  SimplifyParams params;
+  params.adaptive = params.auto_halt = true;
+  Input run = in;
+  simplify_input(run, ref, params);
+  validate(run.quads);
+  const QuadQuality q = quad_quality(run.quads, &ref);
+  EXPECT_EQ(q.folded_faces, 0u);
+  EXPECT_EQ(q.flipped_faces + q.nonconvex_faces, 0u);
+  EXPECT_GE(q.regular_percent, 70.0);
+  EXPECT_LE(q.max_valence, 6);
 }
 
 TEST(Adaptive, faces_are_smaller_around_a_bump) {

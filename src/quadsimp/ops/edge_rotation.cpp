@@ -68,6 +68,21 @@ bool rotation_folds(const QuadMesh& m, Index h, Rotation r, Index except) {
   return false;
 }
 
+bool rotation_bends(const QuadMesh& m, Index h, Rotation r, Index except) {
+  auto fold_cos = [&](const std::array<Index, 4>& q) {
+    return quad_fold_cos(m.position(q[0]), m.position(q[1]), m.position(q[2]), m.position(q[3]));
+  };
+  const Hexagon x = hexagon(m, h);
+  double now = 2;  // the more bent face now, computed only when needed
+  for (const auto& q : rotated_faces(m, h, r)) {
+    if (except != kNone && std::find(q.begin(), q.end(), except) != q.end()) continue;
+    if (!quad_folds(m.position(q[0]), m.position(q[1]), m.position(q[2]), m.position(q[3]))) continue;
+    if (now > 1) now = std::min(fold_cos(m.face_vertices(x.f1)), fold_cos(m.face_vertices(x.f2)));
+    if (fold_cos(q) < now) return true;
+  }
+  return false;
+}
+
 void rotate_edge(QuadMesh& m, Index h, Rotation r) {
   assert(can_rotate_edge(m, h, r));
   const Hexagon x = hexagon(m, h);

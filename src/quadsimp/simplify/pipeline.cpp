@@ -35,6 +35,7 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
     fo.progress = progress;
     fitmaps = compute_fitmaps(ref.mesh(), fo);
     opt.adaptive = true;
+    opt.refuse_folds = true;
     opt.fitmaps = &fitmaps;
     opt.m_factor = p.m_factor;
     opt.halt_share = p.halt_share;
