@@ -27,10 +27,12 @@ struct SimplifyOptions {
   //! smoothing's target sizes, which bounds the size ratio between the finest and the
   //! coarsest parts (0: no clamp). Unclamped, thin parts (the bunny's ears) took most of
   //! the budget and the rest grew huge faces: RMS distance 3x the uniform one at the
-  //! same count. Measured at the paper's Table 2 counts, 0.3 gave the lowest RMS; with
-  //! the sized smoothing 0.2 was 1-8% lower at fixed counts, too close to retune for
-  //! (bench/RESULTS.md).
-  double s_percentiles = 0.3;
+  //! same count. 0.2 (20-80%): with refuse_folds, its RMS gain over uniform was 2 to 7
+  //! points higher than 0.3's on the seven-count windows around both settings' halting
+  //! counts on the bunny and the gargoyle (armadillo 1 to 2 lower), and 1.3 points
+  //! higher over twelve fixed counts; before refuse_folds it took the moai under
+  //! 70% regular vertices, now 74.5% (bench/RESULTS.md).
+  double s_percentiles = 0.2;
   //! Automatic halting (adaptive mode without a face target): stop once the faces whose
   //! collapse the M-fitmap refused, and that have not changed since, cover this share
   //! of the surface. 1 runs on until no feasible collapse remains (the paper's rule).
