@@ -95,6 +95,12 @@ Vec3 QuadMesh::face_area_normal(Index f) const {
   return (pos_[q[2]] - pos_[q[0]]).cross(pos_[q[3]] - pos_[q[1]]);
 }
 
+Vec3 QuadMesh::vertex_area_normal(Index v) const {
+  Vec3 n = Vec3::Zero();
+  for_each_outgoing(v, [&](Index h) { n += face_area_normal(face(h)); });
+  return n;
+}
+
 Vec3 QuadMesh::face_centroid(Index f) const {
   const auto q = face_vertices(f);
   return 0.25 * (pos_[q[0]] + pos_[q[1]] + pos_[q[2]] + pos_[q[3]]);

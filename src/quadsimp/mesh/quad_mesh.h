@@ -92,6 +92,8 @@ class QuadMesh {
 
   //! Face normal as the cross product of the diagonals (twice the vector area).
   Vec3 face_area_normal(Index f) const;
+  //! The sum of face_area_normal() over the faces around v.
+  Vec3 vertex_area_normal(Index v) const;
   Vec3 face_centroid(Index f) const;
 
   // --- editing primitives for the operators ---

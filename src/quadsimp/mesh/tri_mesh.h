@@ -20,6 +20,8 @@ struct TriMesh {
   Index n_faces() const { return Index(faces.size()); }
 };
 
+inline double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
+
 //! What clean() repaired. Every count is also reported through the log function.
 struct CleanReport {
   Index merged_duplicate_vertices = 0;

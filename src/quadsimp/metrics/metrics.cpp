@@ -32,7 +32,7 @@ std::vector<Vec3> sample_surface(const TriMesh& t, Index n, std::uint64_t stream
   double total = 0;
   for (Index f = 0; f < t.n_faces(); ++f) {
     const auto& v = t.faces[f];
-    total += 0.5 * (t.positions[v[1]] - t.positions[v[0]]).cross(t.positions[v[2]] - t.positions[v[0]]).norm();
+    total += triangle_area(t.positions[v[0]], t.positions[v[1]], t.positions[v[2]]);
     cdf[f] = total;
   }
   std::vector<Vec3> s(n + t.n_vertices());

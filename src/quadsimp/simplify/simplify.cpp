@@ -72,7 +72,6 @@ class Simplifier {
   bool rotation_follows_reference(Index h, Rotation r, Index except = kNone) const;
   void smooth_region(int sweeps);
   void smooth_vertex(Index v);
-  Vec3 vertex_normal(Index v) const;
   bool moved_faces_ok(Index v, const Vec3& p) const;
   bool shape_ok(Index f, const Vec3* q, const Vec3& extra_normal, bool bend_check = true) const;
   bool follows_reference(const Vec3& n, const std::array<Index, 4>& corners, const Vec3* q,
@@ -186,12 +185,6 @@ void Simplifier::rebuild_heap() {
   std::make_heap(heap_.begin(), heap_.end(), LaterFirst{});
 }
 
-Vec3 Simplifier::vertex_normal(Index v) const {
-  Vec3 n = Vec3::Zero();
-  m_.for_each_outgoing(v, [&](Index h) { n += m_.face_area_normal(QuadMesh::face(h)); });
-  return n;
-}
-
 // A quad with normal n (diagonal cross product), corners `corners` at positions q, faces
 // like the surface under it: like its corners' foot normals (plus the merged vertex's
 // for a collapse) within acos(0.2).
@@ -287,7 +280,7 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
   // The paper's place: the midpoint projected along the normal. Where that would fold a
   // neighbour (small faces on curved parts), either end is tried too: both lie on M0,
   // and without this such faces stay, with their short edges, to the end.
-  foot = ref_.project_near(foot_face_[a], collapse_position(m_, f, k), vertex_normal(a) + vertex_normal(c),
+  foot = ref_.project_near(foot_face_[a], collapse_position(m_, f, k), m_.vertex_area_normal(a) + m_.vertex_area_normal(c),
                            2 * norm_of_diagonal(m_, f, k));
   if (foot.found() && shape_after(foot.point, ref_.normal_at(foot))) {
     pos = foot.point;

@@ -12,8 +12,6 @@
 namespace qs {
 namespace {
 
-double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
-
 // Normal equations of one vertex: its step along its normal is num / den.
 struct Normal1 {
   double num = 0, den = 0;
@@ -113,29 +111,26 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
   std::vector<Normal1> eq(n);
   std::vector<SurfacePoint> hits;
   TriangleSamples samples;
-  std::vector<Vec3> feet;
+  std::vector<Vec3> feet, from(n), step(n);
+  std::vector<double> scale(n);
+  std::vector<Index> check, again;
+  std::vector<char> bad;
   for (int it = 0; it < opt.iterations; ++it) {
-    const TriMesh out = triangulate(m);
-    for (Index i = 0; i < n; ++i) {
-      Vec3 s = Vec3::Zero();
-      m.for_each_outgoing(live[i], [&](Index h) { s += m.face_area_normal(QuadMesh::face(h)); });
-      normal[i] = s.normalized();
-    }
+    const ReferenceSurface out_surface(triangulate(m));
+    const TriMesh& out = out_surface.mesh();
+    for (Index i = 0; i < n; ++i) normal[i] = m.vertex_area_normal(live[i]).normalized();
     std::fill(eq.begin(), eq.end(), Normal1{});
 
     // Reference -> quads: every input vertex pulls the three corners of its closest
     // output triangle by their barycentric weights.
-    {
-      const ReferenceSurface out_surface(out);
-      hits.resize(in.n_vertices());
-      tbb::parallel_for(Index(0), in.n_vertices(), [&](Index i) { hits[i] = out_surface.closest(in.positions[i]); });
-      for (Index i = 0; i < in.n_vertices(); ++i) {  // serial: the same sums whatever the threads
-        const SurfacePoint& s = hits[i];
-        if (!s.found()) continue;
-        const auto& t = out.faces[s.face];
-        const double w[3] = {1 - s.u - s.v, s.u, s.v};
-        for (int k = 0; k < 3; ++k) eq[t[k]].add(in_weight[i], w[k], (in.positions[i] - s.point).dot(normal[t[k]]));
-      }
+    hits.resize(in.n_vertices());
+    tbb::parallel_for(Index(0), in.n_vertices(), [&](Index i) { hits[i] = out_surface.closest(in.positions[i]); });
+    for (Index i = 0; i < in.n_vertices(); ++i) {  // serial: the same sums whatever the threads
+      const SurfacePoint& s = hits[i];
+      if (!s.found()) continue;
+      const auto& t = out.faces[s.face];
+      const double w[3] = {1 - s.u - s.v, s.u, s.v};
+      for (int k = 0; k < 3; ++k) eq[t[k]].add(in_weight[i], w[k], (in.positions[i] - s.point).dot(normal[t[k]]));
     }
 
     // Quads -> reference, from regular samples of the output triangles.
@@ -150,8 +145,7 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
 
     // All vertices take their damped steps at once. The faces a step spoils have
     // their corners' steps halved, twice, then dropped, until every face passes.
-    std::vector<Vec3> from(n), step(n);
-    std::vector<double> scale(n, 1.0);
+    std::fill(scale.begin(), scale.end(), 1.0);
     for (Index i = 0; i < n; ++i) {
       from[i] = m.position(live[i]);
       double edges = 0;
@@ -165,13 +159,12 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
       const double t = eq[i].den > 0 && !fixed ? std::clamp(opt.damping * eq[i].num / eq[i].den, -limit, limit) : 0.0;
       step[i] = t * normal[i];
     }
-    std::vector<Index> check = faces;
-    std::vector<char> bad;
+    check = faces;
     while (!check.empty()) {
       for (Index i = 0; i < n; ++i) m.position(live[i]) = from[i] + scale[i] * step[i];
       bad.assign(check.size(), 0);
       tbb::parallel_for(std::size_t(0), check.size(), [&](std::size_t j) { bad[j] = !face_ok(check[j], face_start[check[j]]); });
-      std::vector<Index> again;
+      again.clear();
       for (std::size_t j = 0; j < check.size(); ++j) {
         if (!bad[j]) continue;
         for (Index v : m.face_vertices(check[j])) {
