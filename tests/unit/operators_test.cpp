@@ -195,12 +195,14 @@ TEST(EdgeRotation, bend_check_sees_what_the_fold_check_does_not) {
   // A 2x2 grid with the corner 6 and its neighbour 7 raised: all four quads are convex
   // and bend by less than 90 degrees, and rotating the edge 4-3 clockwise makes a quad
   // that is convex and faces the old pair's way (rotation_folds() lets it pass) but bends
-  // past 90 degrees whichever diagonal splits it.
+  // past 90 degrees whichever diagonal splits it (rotation_folds() with `bends` refuses).
   QuadMesh g = quad_grid(2, 2);
   const Index h = halfedge_between(g, 4, 3);
   ASSERT_NE(h, kNone);
   ASSERT_TRUE(can_rotate_edge(g, h, Rotation::Cw));
-  EXPECT_FALSE(rotation_bends(g, h, Rotation::Cw));  // flat
+  // Flat: the bend check adds no refusal (the flat grid's rotation is refused, or not,
+  // by convexity alone).
+  EXPECT_EQ(rotation_folds(g, h, Rotation::Cw, kNone, true), rotation_folds(g, h, Rotation::Cw));
   g.position(6).z() = 3;
   g.position(7).z() = 4;
   for (Index f = 0; f < 4; ++f) {
@@ -208,13 +210,13 @@ TEST(EdgeRotation, bend_check_sees_what_the_fold_check_does_not) {
     EXPECT_FALSE(quad_folds(g.position(c[0]), g.position(c[1]), g.position(c[2]), g.position(c[3])));
   }
   EXPECT_FALSE(rotation_folds(g, h, Rotation::Cw));
-  EXPECT_TRUE(rotation_bends(g, h, Rotation::Cw));
+  EXPECT_TRUE(rotation_folds(g, h, Rotation::Cw, kNone, true));
   // Left out, as for rotation_folds(), when the bent face holds `except`.
   Index bent_corner = kNone;
   for (const auto& q : rotated_faces(g, h, Rotation::Cw))
     if (quad_folds(g.position(q[0]), g.position(q[1]), g.position(q[2]), g.position(q[3]))) bent_corner = q[0];
   ASSERT_NE(bent_corner, kNone);
-  EXPECT_FALSE(rotation_bends(g, h, Rotation::Cw, bent_corner));
+  EXPECT_FALSE(rotation_folds(g, h, Rotation::Cw, bent_corner, true));
 }
 
 TEST(EdgeRotation, never_makes_two_quads_share_a_diagonal) {

@@ -34,14 +34,12 @@ bool can_rotate_edge(const QuadMesh& mesh, Index h, Rotation r);
 //! the mesh: for energy and geometric checks.
 std::array<std::array<Index, 4>, 2> rotated_faces(const QuadMesh& mesh, Index h, Rotation r);
 
-//! True when a rotated face would be folded or degenerate relative to the old pair.
+//! True when a rotated face would be folded or degenerate relative to the old pair, or
+//! non-convex; with `bends`, also when it would bend by more than 90 degrees whichever
+//! diagonal splits it (quad_folds()) and more than the more bent of the two faces now.
 //! A rotated face with corner `except` is not checked (kNone: both are): the border
 //! ear removal rotates an edge to make an ear that it collapses right away.
-bool rotation_folds(const QuadMesh& mesh, Index h, Rotation r, Index except = kNone);
-
-//! True when a rotated face would bend by more than 90 degrees whichever diagonal splits
-//! it (quad_folds()), and more than the more bent of the two faces now. `except` as above.
-bool rotation_bends(const QuadMesh& mesh, Index h, Rotation r, Index except = kNone);
+bool rotation_folds(const QuadMesh& mesh, Index h, Rotation r, Index except = kNone, bool bends = false);
 
 //! Performs the rotation in place (faces keep their ids). \pre can_rotate_edge.
 void rotate_edge(QuadMesh& mesh, Index h, Rotation r);

@@ -387,7 +387,7 @@ bool Simplifier::try_rotate(Index h) {
   const auto e_second = second == Rotation::Ccw ? e_a : e_b;
   for (Rotation r : {first, second}) {
     if (r == second && e_second >= keep) break;
-    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r) || (opt_.refuse_folds && rotation_bends(m_, h, r)) ||
+    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r, kNone, opt_.refuse_folds) ||
         !rotation_follows_reference(h, r))
       continue;
     const Index f1 = QuadMesh::face(h), f2 = QuadMesh::face(g);
@@ -626,8 +626,8 @@ bool Simplifier::remove_border_vertex(Index b) {
   // or turns outwards (the ear's angle at b is then 180 degrees or more): on bunny.ply
   // at 11K, border edges of 0.44 mu stayed along a hole's staircase border.
   for (Rotation r : {Rotation::Ccw, Rotation::Cw}) {
-    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r, b) ||
-        (opt_.refuse_folds && rotation_bends(m_, h, r, b)) || !rotation_follows_reference(h, r, b))
+    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r, b, opt_.refuse_folds) ||
+        !rotation_follows_reference(h, r, b))
       continue;
     rotate_edge(m_, h, r);
     Index ear = kNone, k = 0;
