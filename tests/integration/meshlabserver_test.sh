@@ -69,15 +69,26 @@ for k in ("homeometry_min", "homeometry_max", "mean_edge", "hausdorff_e3", "rms_
 print("ok: plugin and CLI agree:", {k: a[k] for k in ("faces", "regular_percent", "rms_e3")})
 PY
 
+# Runs the example script with some switches turned on, and the CLI with the matching
+# options, on the bunny: $work/NAME.json and $work/cli_NAME.json hold their stats.
+script_and_cli() {  # NAME "PARAM1 PARAM2..." CLI-OPTIONS...
+  local name=$1 params=$2 p
+  shift 2
+  cp "$script" "$work/$name.mlx"
+  for p in $params; do
+    sed -i "s/name=\"$p\" type=\"RichBool\" value=\"false\"/name=\"$p\" type=\"RichBool\" value=\"true\"/" "$work/$name.mlx"
+    grep -q "name=\"$p\" type=\"RichBool\" value=\"true\"" "$work/$name.mlx" || { fail "$name: no $p in the script"; return 1; }
+  done
+  if ! server -i "$bunny" -o "$work/$name.ply" -m ff -s "$work/$name.mlx" ||
+     ! "$cli" stats "$bunny" "$work/$name.ply" --json --samples 50000 >"$work/$name.json"; then
+    fail "$name script failed on the bunny"; cat "$work/server.log"; return 1
+  fi
+  "$cli" simplify "$bunny" "$work/cli_$name.ply" -q "$@" >/dev/null
+  "$cli" stats "$bunny" "$work/cli_$name.ply" --json --samples 50000 >"$work/cli_$name.json"
+}
+
 # 3b. Adaptive mode with automatic halting from a script: it stops where the CLI does.
-sed -e 's/name="Adaptive" type="RichBool" value="false"/name="Adaptive" type="RichBool" value="true"/' \
-    -e 's/name="AutoHalt" type="RichBool" value="false"/name="AutoHalt" type="RichBool" value="true"/' \
-    "$script" >"$work/adaptive.mlx"
-grep -q 'name="AutoHalt" type="RichBool" value="true"' "$work/adaptive.mlx" || fail "could not make the adaptive script"
-if server -i "$bunny" -o "$work/adaptive.ply" -m ff -s "$work/adaptive.mlx" &&
-   "$cli" stats "$bunny" "$work/adaptive.ply" --json --samples 50000 >"$work/adaptive.json"; then
-  "$cli" simplify "$bunny" "$work/cli_adaptive.ply" --adaptive --auto-halt -q >/dev/null
-  "$cli" stats "$bunny" "$work/cli_adaptive.ply" --json --samples 50000 >"$work/cli_adaptive.json"
+if script_and_cli adaptive "Adaptive AutoHalt" --adaptive --auto-halt; then
   python3 - "$work/cli_adaptive.json" "$work/adaptive.json" <<'PY' || fail "adaptive: plugin and CLI halt differently"
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
@@ -85,18 +96,10 @@ for k in ("faces", "vertices", "max_valence", "regular_percent"):
     assert a[k] == b[k], (k, a[k], b[k])
 print("ok: adaptive, automatic halting: plugin and CLI stop at", a["faces"], "quads")
 PY
-else
-  fail "adaptive script failed on the bunny"; cat "$work/server.log"
 fi
 
 # 3c. The fit to the input from a script: the same as the CLI's, and closer than without.
-sed 's/name="FitToInput" type="RichBool" value="false"/name="FitToInput" type="RichBool" value="true"/' \
-    "$script" >"$work/fit.mlx"
-grep -q 'name="FitToInput" type="RichBool" value="true"' "$work/fit.mlx" || fail "could not make the fit script"
-if server -i "$bunny" -o "$work/fit.ply" -m ff -s "$work/fit.mlx" &&
-   "$cli" stats "$bunny" "$work/fit.ply" --json --samples 50000 >"$work/fit.json"; then
-  "$cli" simplify "$bunny" "$work/cli_fit.ply" --faces 3000 --fit-to-input -q >/dev/null
-  "$cli" stats "$bunny" "$work/cli_fit.ply" --json --samples 50000 >"$work/cli_fit.json"
+if script_and_cli fit "FitToInput" --faces 3000 --fit-to-input; then
   python3 - "$work/cli_fit.json" "$work/fit.json" "$work/cli.json" <<'PY' || fail "fit: plugin and CLI differ"
 import json, sys
 a, b, plain = (json.load(open(p)) for p in sys.argv[1:4])
@@ -106,8 +109,6 @@ assert abs(a["rms_e3"] - b["rms_e3"]) <= 0.01 * a["rms_e3"], (a["rms_e3"], b["rm
 assert b["rms_e3"] < 0.8 * plain["rms_e3"], (b["rms_e3"], plain["rms_e3"])
 print("ok: fit to the input: plugin and CLI agree, RMS", plain["rms_e3"], "->", b["rms_e3"])
 PY
-else
-  fail "fit script failed on the bunny"; cat "$work/server.log"
 fi
 
 # 4. Bad input: the filter refuses with our message, and MeshLab does not crash.
