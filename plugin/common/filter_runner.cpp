@@ -47,6 +47,7 @@ QuadMesh run_simplification(MeshFile layer, const std::string& name, const Simpl
                          r.faces, s, r.collapses) +
                   format("%g rotations); regular %.1f%%, max valence %g", r.rotations, q.regular_percent,
                          q.max_valence));
+  if (const std::string why = target_shortfall(r, params.target_faces); !why.empty()) o.log.push_back(why);
   o.values = {{"faces", q.faces}, {"vertices", q.vertices}, {"regular_percent", q.regular_percent},
               {"max_valence", q.max_valence}, {"seconds", s}};
   return std::move(in.quads);

@@ -126,6 +126,8 @@ int run_simplify(const SimplifyArgs& a) {
     Input in = load_input(a.input, {}, stderr_log(a.quiet));
     const ReferenceSurface ref(std::move(in.reference));
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
+    const std::string shortfall = target_shortfall(r, params.target_faces);
+    if (const LogFn log = stderr_log(a.quiet); log && !shortfall.empty()) log(shortfall);
     write_quad_mesh(a.output, in.quads);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads);

@@ -108,6 +108,20 @@ TEST_F(Cli, simplify_stats_and_fitmap) {
   EXPECT_EQ(run("simplify " + input_ + " " + out + " --adaptive --auto-halt -q").code, 0);
 }
 
+TEST_F(Cli, a_target_the_mesh_cannot_reach_is_reported) {
+  // With its border kept, a grid cannot lose the faces along it.
+  const std::string grid = p("grid.ply");
+  write_tri_mesh_ply(grid, fixtures::tri_grid(12, 12));
+  CliRun r = run("simplify " + grid + " " + p("g.ply") + " --faces 4 --preserve-boundary");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("note: stopped at "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("quads, above the target of 4: every remaining collapse was refused"), std::string::npos) << r.out;
+  r = run("simplify " + grid + " " + p("g.ply") + " --faces 4 --preserve-boundary -q");
+  EXPECT_EQ(r.out.find("above the target"), std::string::npos) << r.out;
+  r = run("simplify " + input_ + " " + p("s.ply") + " --faces 60");
+  EXPECT_EQ(r.out.find("above the target"), std::string::npos) << r.out;
+}
+
 TEST_F(Cli, fit_to_input_lowers_the_distance) {
   // The JSON's RMS distance, with and without the fit, on the same simplification.
   auto rms = [&](const std::string& extra) {

@@ -66,6 +66,19 @@ def test_simplification_on_a_generated_open_mesh(preserve, fit):
     assert side.min() < 1e-6
 
 
+def test_a_target_the_mesh_cannot_reach_is_logged(capfd):
+    # With its border kept, a grid cannot lose the faces along it: the log (on stderr) says so.
+    ms = pymeshlab.MeshSet(verbose=True)
+    ms.add_mesh(open_grid(12), "grid")
+    ms.meshing_quad_mesh_simplification(targetfacenum=4, preserveboundary=True)
+    assert ms.current_mesh().face_number() > 4
+    assert "above the target of 4: every remaining collapse was refused" in capfd.readouterr().err
+    ms.set_current_mesh(0)
+    ms.meshing_quad_mesh_simplification(targetfacenum=60)
+    assert len(ms.current_mesh().polygonal_face_list()) == 60
+    assert "above the target" not in capfd.readouterr().err
+
+
 def test_adaptive_with_automatic_halting():
     ms = pymeshlab.MeshSet()
     ms.add_mesh(open_grid(40), "grid")

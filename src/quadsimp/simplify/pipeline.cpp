@@ -2,6 +2,7 @@
 #include "quadsimp/simplify/pipeline.h"
 
 #include <stdexcept>
+#include <string>
 
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/reference/reference_surface.h"
@@ -47,6 +48,15 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
     fit_to_surface(in.quads, ref, fit);
   }
   return r;
+}
+
+std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
+  if (target_faces == 0 || r.faces <= target_faces || r.cancelled) return {};
+  const auto n = [](Index x) { return std::to_string(x); };
+  return "stopped at " + n(r.faces) + " quads, above the target of " + n(target_faces) +
+         ": every remaining collapse was refused (refusals over the run: " + n(r.refused_topology) +
+         " topology, e.g. holes and kept borders; " + n(r.refused_valence) + " valence cap; " +
+         n(r.refused_geometry) + " shape; " + n(r.refused_fitmap) + " M-fitmap)";
 }
 
 }  // namespace qs

@@ -30,4 +30,10 @@ std::string check_params(const SimplifyParams& params);
 SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const SimplifyParams& params,
                               const ProgressFn& progress = {});
 
+//! "" when the run reached its face target (or had none, or was cancelled); otherwise one
+//! sentence for the log saying where it stopped and what refused the remaining
+//! collapses. Holes, a kept border and the valence cap can leave a mesh above any
+//! target, and a user asking for 50 quads must not take 568 for a bug.
+std::string target_shortfall(const SimplifyReport& report, Index target_faces);
+
 }  // namespace qs
