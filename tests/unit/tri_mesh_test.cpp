@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "fixtures/shapes.h"
 #include "quadsimp/util/errors.h"
@@ -53,6 +54,68 @@ TEST(Clean, repairs_and_logs) {
   EXPECT_EQ(t.n_vertices(), 16u);
   EXPECT_GE(notes.size(), 4u);
   EXPECT_NE(notes[0].find("in.ply"), std::string::npos);
+}
+
+TEST(Clean, merges_copies_of_a_pole_a_rounding_error_apart) {
+  // The south pole written once per segment, each copy off by a rounding error: exact
+  // merging misses them, and the edges between them bound a hole of no size.
+  const TriMesh sphere = tri_sphere(8, 10);
+  TriMesh t = sphere;
+  const Index south = t.n_vertices() - 1;
+  Index copies = 0;
+  for (auto& f : t.faces)
+    for (Index& v : f)
+      if (v == south) {
+        ++copies;  // on both sides of x = 0, a cell border of the merge
+        t.positions.push_back(t.positions[south] + Vec3(copies % 2 ? 1e-16 * copies : -1e-16 * copies, 0, 0));
+        v = t.n_vertices() - 1;
+      }
+  // A real short edge, a thousandth of the diagonal, is kept.
+  t.positions[1] += Vec3(1e-3, 0, 0);
+  std::vector<std::string> notes;
+  const CleanReport r = clean(t, "in.ply", [&](std::string_view m) { notes.emplace_back(m); });
+  EXPECT_EQ(r.merged_close_vertices, copies - 1);
+  EXPECT_EQ(r.removed_unreferenced_vertices, 1u);  // the original pole, which no face used
+  EXPECT_EQ(t.n_vertices(), sphere.n_vertices());
+  EXPECT_EQ(t.n_faces(), sphere.n_faces());
+  for (const auto& adj : triangle_adjacency(t))
+    for (Index g : adj) EXPECT_NE(g, kNone) << "a border is left where the copies were";
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) {
+    return n.find("merged into one closer than 1e-6") != std::string::npos;
+  }));
+}
+
+TEST(Clean, closes_an_unwelded_seam_and_orients_across_it) {
+  // The faces south of ring 5 use their own copies of its vertices, a rounding error
+  // off, and are flipped: once the seam is closed they are one component with the
+  // north, so they take its orientation.
+  const int rings = 8, segments = 10;
+  const TriMesh sphere = tri_sphere(rings, segments);
+  TriMesh t = sphere;
+  const Index first = 1 + 4 * segments, last = first + segments;  // ring 5
+  std::vector<Index> copy(t.n_vertices(), kNone);
+  Index south = 0;
+  for (auto& f : t.faces) {
+    if (std::min({f[0], f[1], f[2]}) < first) continue;
+    ++south;
+    std::swap(f[1], f[2]);
+    for (Index& v : f)
+      if (v < last) {
+        if (copy[v] == kNone) {
+          copy[v] = t.n_vertices();
+          t.positions.push_back(t.positions[v] + Vec3(1e-15, 0, 0));
+        }
+        v = copy[v];
+      }
+  }
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.merged_close_vertices, Index(segments));
+  EXPECT_EQ(r.flipped_faces, south);
+  EXPECT_EQ(t.n_vertices(), sphere.n_vertices());
+  std::set<std::pair<Index, Index>> walked;  // each edge once each way: closed and consistent
+  for (const auto& f : t.faces)
+    for (int k = 0; k < 3; ++k) EXPECT_TRUE(walked.insert({f[k], f[(k + 1) % 3]}).second);
+  for (const auto& [a, b] : walked) EXPECT_TRUE(walked.count({b, a})) << a << "-" << b << " is a border";
 }
 
 TEST(Clean, orients_each_component_consistently) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <utility>
 
 #include "quadsimp/util/errors.h"
 
@@ -115,6 +116,77 @@ void merge_duplicate_vertices(TriMesh& m, CleanReport& r) {
   }
   for (auto& t : m.faces)
     for (Index& v : t) v = map[v];
+}
+
+// Rounding leaves copies of one point a few ulps apart (a pole written once per
+// triangle of its fan, an unwelded seam): exact merging misses them, and they bound a
+// hole of no size whose border the simplifier must keep (on a sphere: edges of length
+// 0 in the result, and with the border preserved a crumpled one). Border vertices closer
+// than a millionth of the diagonal, far below any sampled surface's spacing and above
+// float32 rounding, are merged into the lowest index. Only border vertices: two sheets
+// of a scan can touch closer than that (a 1.1M-triangle subdivided armadillo: 6 pairs),
+// and merging them would make the edges there non-manifold. `adj` as adjacency_from()
+// gives it; returns whether any vertex was merged.
+bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, CleanReport& r) {
+  std::vector<Index> border;
+  for (Index f = 0; f < m.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k)
+      if (adj[f][k] == kNone) border.push_back(m.faces[f][k]), border.push_back(m.faces[f][(k + 1) % 3]);
+  if (border.empty()) return false;
+  std::sort(border.begin(), border.end());
+  border.erase(std::unique(border.begin(), border.end()), border.end());
+  // Cells of 1024 eps, 21 bits per axis from the box's corner (the box spans 1000):
+  // a vertex is compared with the others in its cell, and with a neighbour cell's only
+  // when within eps of it.
+  const double eps = 1e-6 * bbox_diagonal(m.positions), cell = 1024 * eps;
+  if (!(eps > 0)) return false;
+  Vec3 corner = m.positions[border[0]];
+  for (Index v : border) corner = corner.cwiseMin(m.positions[v]);
+  const auto cell_of = [&](Index v, int i) { return std::int64_t(std::floor((m.positions[v][i] - corner[i]) / cell)); };
+  const auto key_of = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return std::uint64_t(x) << 42 | std::uint64_t(y) << 21 | std::uint64_t(z);
+  };
+  std::vector<std::pair<std::uint64_t, Index>> sorted;
+  for (Index v : border) sorted.push_back({key_of(cell_of(v, 0), cell_of(v, 1), cell_of(v, 2)), v});
+  std::sort(sorted.begin(), sorted.end());
+  UnionFind sets(m.n_vertices());
+  const auto merge_near = [&](Index v, auto first, auto last) {
+    for (auto it = first; it != last; ++it)
+      if ((m.positions[v] - m.positions[it->second]).squaredNorm() <= eps * eps) sets.unite(v, it->second);
+  };
+  for (auto run = sorted.begin(); run != sorted.end();) {
+    auto end = run;
+    while (end != sorted.end() && end->first == run->first) ++end;
+    for (auto at = run; at != end; ++at) {
+      const Index v = at->second;
+      merge_near(v, at + 1, end);
+      std::int64_t c[3];
+      int lo[3], hi[3];  // neighbour cells within eps along each axis
+      for (int i = 0; i < 3; ++i) {
+        c[i] = cell_of(v, i);
+        const double x = m.positions[v][i] - corner[i] - cell * double(c[i]);
+        lo[i] = x < eps && c[i] > 0 ? -1 : 0;
+        hi[i] = cell - x < eps ? 1 : 0;
+      }
+      for (int dx = lo[0]; dx <= hi[0]; ++dx)
+        for (int dy = lo[1]; dy <= hi[1]; ++dy)
+          for (int dz = lo[2]; dz <= hi[2]; ++dz) {
+            if (dx == 0 && dy == 0 && dz == 0) continue;
+            const std::pair<std::uint64_t, Index> k{key_of(c[0] + dx, c[1] + dy, c[2] + dz), 0};
+            const auto range = std::equal_range(sorted.begin(), sorted.end(), k,
+                                                [](const auto& a, const auto& b) { return a.first < b.first; });
+            merge_near(v, range.first, range.second);
+          }
+    }
+    run = end;
+  }
+  Index merged = 0;
+  for (Index v : border) merged += sets.find(v) != v;
+  if (!merged) return false;
+  r.merged_close_vertices += merged;
+  for (auto& t : m.faces)
+    for (Index& v : t) v = sets.find(v);
+  return true;
 }
 
 void remove_degenerate_and_duplicate_faces(TriMesh& m, CleanReport& r) {
@@ -322,9 +394,12 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
   remove_degenerate_and_duplicate_faces(m, r);
   if (m.faces.empty()) throw InvalidInput(src + ": every face is degenerate (zero area)");
   {
-    const CornersAround around = corners_around(m);  // orient() flips corners: not reused after it
     std::array<Index, 2> bad;
-    const auto adj = adjacency_from(m, around, &bad);
+    auto adj = adjacency_from(m, corners_around(m), &bad);
+    if (merge_close_border_vertices(m, adj, r)) {
+      remove_degenerate_and_duplicate_faces(m, r);
+      adj = adjacency_from(m, corners_around(m), &bad);
+    }
     if (bad[0] != kNone)
       throw InvalidInput(src + ": edge " + std::to_string(bad[0]) + "-" + std::to_string(bad[1]) +
                          " is shared by more than two triangles (non-manifold edge)");
@@ -332,13 +407,15 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
   }
   split_nonmanifold_vertices(m, r);
   remove_unreferenced(m, r);
-  r.removed_unreferenced_vertices -= r.merged_duplicate_vertices;  // merged copies are not "unreferenced"
+  // merged copies are not "unreferenced"
+  r.removed_unreferenced_vertices -= r.merged_duplicate_vertices + r.merged_close_vertices;
 
   if (log) {
     auto note = [&](Index n, const char* what) {
       if (n) log(src + ": " + std::to_string(n) + " " + what);
     };
     note(r.merged_duplicate_vertices, "duplicate vertices merged");
+    note(r.merged_close_vertices, "border vertices merged into one closer than 1e-6 of the bounding-box diagonal");
     note(r.removed_degenerate_faces, "degenerate faces removed");
     note(r.removed_duplicate_faces, "duplicate faces removed");
     note(r.removed_unreferenced_vertices, "unreferenced vertices removed");

@@ -25,6 +25,7 @@ inline double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) { retur
 //! What clean() repaired. Every count is also reported through the log function.
 struct CleanReport {
   Index merged_duplicate_vertices = 0;
+  Index merged_close_vertices = 0;  //!< border vertices within 1e-6 of the bbox diagonal of another
   Index removed_degenerate_faces = 0;
   Index removed_duplicate_faces = 0;
   Index removed_unreferenced_vertices = 0;
@@ -34,7 +35,8 @@ struct CleanReport {
 
 //! Makes `mesh` a clean, oriented, edge- and vertex-manifold triangle mesh, or throws.
 //!
-//! Repairs (each logged): exact-duplicate vertices merged, faces with a repeated
+//! Repairs (each logged): exact-duplicate vertices merged, border vertices closer than
+//! 1e-6 of the bounding-box diagonal merged, faces with a repeated
 //! vertex or zero area removed, duplicate faces removed, unreferenced vertices
 //! removed, non-manifold vertices split (one copy per fan), faces re-oriented
 //! consistently within each component.
