@@ -103,6 +103,18 @@ TEST(Fitmaps, sphere_cap_s_matches_the_analytic_growth) {
   }
 }
 
+TEST(Fitmaps, do_not_depend_on_where_the_mesh_is) {
+  // A million units out (survey coordinates), the moments' covariance cancelled every
+  // digit: the plane fits, so both fitmaps, were noise.
+  const TriMesh t = height_field(60, 0.4, [](double x, double y) { return std::sqrt(1.0 - x * x - y * y); });
+  TriMesh far = t;
+  for (Vec3& p : far.positions) p += Vec3(1e6, -2e6, 3e6);
+  const Fitmaps a = compute_fitmaps_unsmoothed(t), b = compute_fitmaps_unsmoothed(far);
+  const Index c = centre_vertex(t);
+  EXPECT_NEAR(b.s[c], a.s[c], 1e-3 * a.s[c]);
+  EXPECT_EQ(b.m[c], a.m[c]);
+}
+
 TEST(Fitmaps, cylinder_s_is_lower_than_the_sphere) {
   // Bent in one direction only: RMS r^2 / (8R), F_S = sqrt(1 / (8R)).
   const TriMesh t = height_field(80, 0.4, [](double x, double) { return std::sqrt(1.0 - x * x); });

@@ -374,6 +374,36 @@ TEST(ReferenceSurface, projection_lands_on_the_surface) {
   EXPECT_NEAR(ref.interpolate(x, hit), hit.point.x(), 1e-5);
 }
 
+TEST(ReferenceSurface, a_mesh_far_from_the_origin_is_queried_as_precisely) {
+  // Embree works in float, which rounds 3e6 to a quarter unit: without the shift to
+  // working_origin() these points were off the unit sphere by as much.
+  TriMesh s = tri_sphere(30, 40);
+  const Vec3 shift(1e6, -2e6, 3e6);
+  for (Vec3& p : s.positions) p += shift;
+  clean(s);
+  const ReferenceSurface ref(s);
+  for (int i = 0; i < 20; ++i) {
+    const Vec3 dir = Vec3(std::cos(i * 0.7), std::sin(i * 0.7), std::cos(i * 0.3)).normalized();
+    const SurfacePoint hit = ref.ray_project(shift + 1.3 * dir, dir, 1.0);
+    ASSERT_TRUE(hit.found());
+    EXPECT_NEAR((hit.point - shift).norm(), 1.0, 0.01);  // on the (faceted) unit sphere
+    EXPECT_NEAR(hit.distance, 0.3, 0.01);
+    EXPECT_LT(ref.closest(hit.point).distance, 1e-6);
+    EXPECT_NEAR(ref.closest(shift + 1.3 * dir).distance, 0.3, 0.01);
+  }
+}
+
+TEST(Simplify, a_mesh_far_from_the_origin_simplifies_as_at_it) {
+  Case here = prepare(tri_sphere(40, 60));
+  TriMesh t = tri_sphere(40, 60);
+  for (Vec3& p : t.positions) p += Vec3(1e6, -2e6, 3e6);
+  Case far = prepare(t);
+  const ReferenceSurface ref_here(here.tri), ref_far(far.tri);
+  run_and_check(here, 400, ref_here);
+  run_and_check(far, 400, ref_far);  // every vertex on the sphere, none flipped
+  EXPECT_NEAR(mean_edge_length(far.quads), mean_edge_length(here.quads), 0.01 * mean_edge_length(here.quads));
+}
+
 TEST(ReferenceSurface, project_near_walks_to_the_same_hit) {
   TriMesh s = tri_sphere(30, 40);
   clean(s);

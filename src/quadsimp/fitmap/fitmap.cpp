@@ -54,6 +54,20 @@ Moments triangle_moments(const Vec3& a, const Vec3& b, const Vec3& c) {
   return m;
 }
 
+// The moments of every triangle about working_origin(), returned in `centre`. The plane
+// fit takes the covariance as second moments minus the mean's square, which cancels
+// digits as the square of (distance from the origin / radius): a plane a million units
+// from the origin (survey coordinates) lost them all and got random fitmaps.
+std::vector<Moments> moments_about_centre(const TriMesh& t, Vec3& centre) {
+  centre = working_origin(t.positions);
+  std::vector<Moments> tm(t.n_faces());
+  for (Index f = 0; f < t.n_faces(); ++f) {
+    const auto& v = t.faces[f];
+    tm[f] = triangle_moments(t.positions[v[0]] - centre, t.positions[v[1]] - centre, t.positions[v[2]] - centre);
+  }
+  return tm;
+}
+
 struct Fit {
   bool ok = false;
   double error = 0;  // RMS distance to the plane
@@ -299,9 +313,8 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
   const std::vector<double> radii = fitmap_radii(t, opt.levels);
   const Index nv = t.n_vertices(), nl = Index(radii.size());
   const Incidence inc(t);
-  std::vector<Moments> tm(t.n_faces());
-  for (Index f = 0; f < t.n_faces(); ++f)
-    tm[f] = triangle_moments(t.positions[t.faces[f][0]], t.positions[t.faces[f][1]], t.positions[t.faces[f][2]]);
+  Vec3 centre;
+  const std::vector<Moments> tm = moments_about_centre(t, centre);
   std::vector<double> error(std::size_t(nv) * nl, 0), frac(std::size_t(nv) * nl, 0);
   std::vector<char> ok(std::size_t(nv) * nl, 0);
   tbb::enumerable_thread_specific<Scratch> scratch;
@@ -322,7 +335,7 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
         if (inc.vt_start[v] == inc.vt_start[v + 1]) return;
         const std::size_t k = std::size_t(v) * nl + i;
         const Index start = L.cell_of_triangle[inc.vt[inc.vt_start[v]]];
-        ok[k] = cell_ball(L, start, t.positions[v], r, scratch.local(), error[k], frac[k]);
+        ok[k] = cell_ball(L, start, t.positions[v] - centre, r, scratch.local(), error[k], frac[k]);
       });
       for (auto& s : scratch) s.mark.clear();
     }
@@ -364,9 +377,8 @@ Fitmaps compute_fitmaps_unsmoothed(const TriMesh& mesh, const FitmapOptions& opt
 Fitmaps fitmaps_brute_force(const TriMesh& t, const std::vector<Index>& vertices, const FitmapOptions& opt) {
   const std::vector<double> radii = fitmap_radii(t, opt.levels);
   const Incidence inc(t);
-  std::vector<Moments> tm(t.n_faces());
-  for (Index f = 0; f < t.n_faces(); ++f)
-    tm[f] = triangle_moments(t.positions[t.faces[f][0]], t.positions[t.faces[f][1]], t.positions[t.faces[f][2]]);
+  Vec3 centre;
+  const std::vector<Moments> tm = moments_about_centre(t, centre);
   Fitmaps out;
   out.s.assign(vertices.size(), 0.f);
   out.m.assign(vertices.size(), 0.f);

@@ -347,14 +347,26 @@ void sort_spatially(TriMesh& m) {
 
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& t) { return adjacency_from(t, corners_around(t)); }
 
-double bbox_diagonal(const std::vector<Vec3>& positions) {
-  if (positions.empty()) return 0.0;
-  Vec3 lo = positions[0], hi = positions[0];
+namespace {
+std::pair<Vec3, Vec3> bbox(const std::vector<Vec3>& positions) {
+  Vec3 lo = positions.empty() ? Vec3::Zero() : positions[0], hi = lo;
   for (const Vec3& p : positions) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
+  return {lo, hi};
+}
+}  // namespace
+
+double bbox_diagonal(const std::vector<Vec3>& positions) {
+  const auto [lo, hi] = bbox(positions);
   return (hi - lo).norm();
+}
+
+Vec3 working_origin(const std::vector<Vec3>& positions) {
+  const auto [lo, hi] = bbox(positions);
+  const Vec3 centre = 0.5 * (lo + hi);
+  return centre.norm() > (hi - lo).norm() ? centre : Vec3::Zero();
 }
 
 Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::vector<Index>& component) {

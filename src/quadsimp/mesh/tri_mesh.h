@@ -55,6 +55,12 @@ void sort_spatially(TriMesh& mesh);
 //! Length of the diagonal of the axis-aligned bounding box.
 double bbox_diagonal(const std::vector<Vec3>& positions);
 
+//! The point to subtract before float or moment arithmetic: the bounding box's centre
+//! when it lies farther from the origin than the box's diagonal (a scan in survey
+//! coordinates, a million units out: float rounds it to a quarter unit, and moments
+//! cancel every digit), else the origin itself, where a shift would only change rounding.
+Vec3 working_origin(const std::vector<Vec3>& positions);
+
 //! Neighbour triangle across edge k (corner k to k+1) of each triangle; kNone on the
 //! border. \pre edge-manifold (see clean()).
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& mesh);

@@ -31,6 +31,7 @@ void embree_error(void* user, RTCError code, const char* str) {
 
 struct ClosestQuery {
   const ReferenceSurface* ref;
+  Vec3 origin;  // what Embree's coordinates are relative to
   Vec3 normal;  // zero: any orientation
   SurfacePoint* best;
 };
@@ -41,7 +42,7 @@ bool closest_callback(RTCPointQueryFunctionArguments* args) {
   if (!q->normal.isZero() && q->ref->face_normal(f).dot(q->normal) <= 0) return false;
   const auto& t = q->ref->mesh().faces[f];
   const auto& P = q->ref->mesh().positions;
-  const Vec3 p(args->query->x, args->query->y, args->query->z);
+  const Vec3 p = Vec3(args->query->x, args->query->y, args->query->z) + q->origin;
   double u, v;
   const Vec3 c = closest_on_triangle(p, P[t[0]], P[t[1]], P[t[2]], u, v);
   const double d = (c - p).norm();
@@ -125,8 +126,10 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   // Embree owns these buffers (and pads them as it needs).
   auto* xyz = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                           3 * sizeof(float), P.size()));
+  // Embree works in float: shifted to working_origin(), and queries alike.
+  origin_ = working_origin(P);
   for (std::size_t i = 0; i < P.size(); ++i)
-    for (int k = 0; k < 3; ++k) xyz[3 * i + k] = float(P[i][k]);
+    for (int k = 0; k < 3; ++k) xyz[3 * i + k] = float(P[i][k] - origin_[k]);
   auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                              3 * sizeof(unsigned), mesh_.faces.size()));
   for (std::size_t f = 0; f < mesh_.faces.size(); ++f)
@@ -152,9 +155,9 @@ SurfacePoint ReferenceSurface::ray_project(const Vec3& p, const Vec3& dir, doubl
       RTCIntersectContext ctx;
       rtcInitIntersectContext(&ctx);
       RTCRayHit rh;
-      rh.ray.org_x = float(p.x());
-      rh.ray.org_y = float(p.y());
-      rh.ray.org_z = float(p.z());
+      rh.ray.org_x = float(p.x() - origin_.x());
+      rh.ray.org_y = float(p.y() - origin_.y());
+      rh.ray.org_z = float(p.z() - origin_.z());
       rh.ray.dir_x = float(sign * d.x());
       rh.ray.dir_y = float(sign * d.y());
       rh.ray.dir_z = float(sign * d.z());
@@ -186,14 +189,14 @@ SurfacePoint ReferenceSurface::ray_project(const Vec3& p, const Vec3& dir, doubl
 SurfacePoint ReferenceSurface::closest(const Vec3& p, double max_dist, const Vec3& normal) const {
   SurfacePoint best;
   RTCPointQuery q;
-  q.x = float(p.x());
-  q.y = float(p.y());
-  q.z = float(p.z());
+  q.x = float(p.x() - origin_.x());
+  q.y = float(p.y() - origin_.y());
+  q.z = float(p.z() - origin_.z());
   q.time = 0.f;
   q.radius = std::isfinite(max_dist) ? float(max_dist) : std::numeric_limits<float>::infinity();
   RTCPointQueryContext ctx;
   rtcInitPointQueryContext(&ctx);
-  ClosestQuery data{this, normal, &best};
+  ClosestQuery data{this, origin_, normal, &best};
   rtcPointQuery(bvh_->scene, &q, &ctx, closest_callback, &data);
   if (best.found()) {
     // Exact distance from the double-precision input point.

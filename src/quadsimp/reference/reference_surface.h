@@ -73,6 +73,7 @@ class ReferenceSurface {
   // corner, the edge running from that corner to the next), or kNone.
   std::vector<Index> border_out_, border_in_;
   double diagonal_ = 0, mean_edge_ = 0;
+  Vec3 origin_ = Vec3::Zero();  // subtracted from every point Embree sees
   struct Bvh;
   std::unique_ptr<Bvh> bvh_;
 };
