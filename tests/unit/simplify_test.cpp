@@ -133,6 +133,24 @@ TEST(Simplify, open_grid_keeps_its_border) {
   EXPECT_EQ(count_components(c.quads), 1u);
 }
 
+TEST(Simplify, a_small_grid_reaches_a_coarse_target_with_even_quads) {
+  // 900 quads to 50: mu, recounted every 256 collapses, lagged so far behind that the
+  // border kept most of its edges, the run stopped at 70 quads and some quads spanned the
+  // grid (an edge of 9.1 mu).
+  Case c = prepare(tri_grid(30, 30, 0.2));
+  const ReferenceSurface ref(c.tri);
+  SimplifyOptions opt;
+  opt.target_faces = 50;
+  simplify(c.quads, ref, opt);
+  validate(c.quads);
+  EXPECT_LE(c.quads.n_faces(), 50u);
+  EXPECT_GE(c.quads.n_faces(), 48u);
+  const QuadQuality q = quad_quality(c.quads, &ref);
+  EXPECT_EQ(q.flipped_faces + q.nonconvex_faces, 0u);
+  EXPECT_GT(q.homeometry_min, 0.2);
+  EXPECT_LT(q.homeometry_max, 2.5);
+}
+
 TEST(Simplify, flat_square_keeps_its_corners_and_coarsens_its_border) {
   // A straight border: the border ear removal must work where the ear's angle is 180
   // degrees (checking the ear's shape before collapsing it refused every removal here:
