@@ -52,4 +52,13 @@ inline double quad_fold_cos(const Vec3& p0, const Vec3& p1, const Vec3& p2, cons
                   cos_between((p1 - p0).cross(p3 - p0), (p2 - p1).cross(p3 - p1)));
 }
 
+//! The fold rule of the checks: the quad folds (quad_folds()) and bends further than
+//! `before()`, a quad_fold_cos() each caller takes from its own "before" (the face now,
+//! the more bent of two faces, the face at the start). The cheap sign test goes first,
+//! and `before` is called only when it fires: almost no quad folds.
+template <class Before>
+bool quad_folds_further(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, Before&& before) {
+  return quad_folds(p0, p1, p2, p3) && quad_fold_cos(p0, p1, p2, p3) < before();
+}
+
 }  // namespace qs

@@ -68,9 +68,11 @@ bool rotation_folds(const QuadMesh& m, Index h, Rotation r, Index except, bool b
     if (except != kNone && std::find(q.begin(), q.end(), except) != q.end()) continue;
     const Vec3 &p0 = m.position(q[0]), &p1 = m.position(q[1]), &p2 = m.position(q[2]), &p3 = m.position(q[3]);
     if (!quad_keeps_orientation(p0, p1, p2, p3, ref) || !quad_is_convex(p0, p1, p2, p3)) return true;
-    if (!bends || !quad_folds(p0, p1, p2, p3)) continue;
-    if (bent_now > 1) bent_now = std::min(fold_cos(m.face_vertices(x.f1)), fold_cos(m.face_vertices(x.f2)));
-    if (fold_cos(q) < bent_now) return true;
+    if (bends && quad_folds_further(p0, p1, p2, p3, [&] {
+          if (bent_now > 1) bent_now = std::min(fold_cos(m.face_vertices(x.f1)), fold_cos(m.face_vertices(x.f2)));
+          return bent_now;
+        }))
+      return true;
   }
   return false;
 }

@@ -223,9 +223,8 @@ bool Simplifier::shape_ok(Index f, const Vec3* q, const Vec3& extra_normal, bool
   if (!follows_reference(n, c, q, extra_normal)) return false;
   const Vec3 p[4] = {m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3])};
   if (!quad_is_convex(q[0], q[1], q[2], q[3], n) && quad_is_convex(p[0], p[1], p[2], p[3])) return false;
-  // The cheap sign test first: almost no quad bends past 90 degrees.
-  return !(opt_.refuse_folds && bend_check && quad_folds(q[0], q[1], q[2], q[3]) &&
-           quad_fold_cos(q[0], q[1], q[2], q[3]) < quad_fold_cos(p[0], p[1], p[2], p[3]));
+  return !(opt_.refuse_folds && bend_check &&
+           quad_folds_further(q[0], q[1], q[2], q[3], [&] { return quad_fold_cos(p[0], p[1], p[2], p[3]); }));
 }
 
 // Border vertices aim at valence 3, sharp border corners (turning by more than 60

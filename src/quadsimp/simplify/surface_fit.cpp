@@ -87,8 +87,7 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
     const Vec3 p[4] = {m.position(c[0]), m.position(c[1]), m.position(c[2]), m.position(c[3])};
     const Vec3 nf = quad_normal(p[0], p[1], p[2], p[3]);
     if (!keeps_orientation(nf, s.normal) || (s.convex && !quad_is_convex(p[0], p[1], p[2], p[3], nf))) return false;
-    if (quad_folds(p[0], p[1], p[2], p[3]) && quad_fold_cos(p[0], p[1], p[2], p[3]) < std::min(s.fold_cos, 0.0))
-      return false;
+    if (quad_folds_further(p[0], p[1], p[2], p[3], [&] { return std::min(s.fold_cos, 0.0); })) return false;
     if (!s.agrees) return true;
     const SurfacePoint foot = ref.closest(0.25 * (p[0] + p[1] + p[2] + p[3]));
     return !foot.found() || ref.normal_at(foot).dot(nf) > 0;
