@@ -179,6 +179,12 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
   EXPECT_NE(error_of(write("junk.ply", "this is not a ply file\n")).find("unreadable PLY"), std::string::npos);
   EXPECT_NE(error_of(write("junk.off", "OFF\n3 1 0\n0 0 0\n")).find("unreadable OFF"), std::string::npos);
 
+  // A coordinate that is not a number: vcglib's OBJ and OFF readers took it for 0.
+  EXPECT_NE(error_of(write("word.obj", "v 0 0 0\nv 1 0 0\nv abc 1 0\nf 1 2 3\n")).find("line 3: 'abc' is not a number"),
+            std::string::npos);
+  EXPECT_NE(error_of(write("word.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0.5x\n3 0 1 2\n")).find("line 5: '0.5x' is not a number"),
+            std::string::npos);
+
   // Truncated binary PLY.
   write_tri_mesh_ply(path("whole.ply"), tri_sphere(6, 8));
   const auto size = fs::file_size(path("whole.ply"));
@@ -195,6 +201,20 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
   for (const std::string& e : {error_of(path("missing.ply")), error_of(path("cut.ply"))}) {
     EXPECT_EQ(e.find(dir_.string()), 0u) << e;
     EXPECT_EQ(e.find('\n'), std::string::npos);
+  }
+}
+
+TEST_F(MeshIo, text_files_with_comments_colours_and_signs_are_read) {
+  // What the number check must let through: comments, blank lines, normals and texture
+  // coordinates, '+' signs, exponents, COFF colours, counts on the OFF line.
+  const std::string obj = write("ok.obj", "# square\nv +0 0 0\nvn 0 0 1\nvt 0 0\nv 1e0 0 0\n\nv 1 1 0 1\nv 0 1.0 0\n"
+                                          "f 1 2 3\nf 1 3 4\n");
+  const std::string off = write("ok.off", "COFF 4 2 0\n# corners\n0 0 0 255 0 0 255\n1 0 0 255 0 0 255\n"
+                                          "1 1 0 255 0 0 255\n0 1 0 255 0 0 255\n3 0 1 2\n3 0 2 3\n");
+  for (const std::string& p : {obj, off}) {
+    const MeshFile f = read_mesh(p);
+    EXPECT_EQ(f.positions.size(), 4u) << p;
+    EXPECT_EQ(f.positions[2], Vec3(1, 1, 0)) << p;
   }
 }
 

@@ -8,9 +8,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include <vcg/complex/complex.h>
 #include <wrap/io_trimesh/export_obj.h>
@@ -52,6 +55,58 @@ class PMesh : public vcg::tri::TriMesh<std::vector<PVertex>, std::vector<PFace>>
   throw InvalidInput(path + ": " + why);
 }
 
+// vcglib's OBJ and OFF readers take a coordinate that is not a number for 0 (atof), so a
+// damaged file loaded as a mesh with vertices piled at the origin. The vertex lines are
+// checked first: the first three fields of each must be numbers.
+void check_vertex_numbers(const std::string& path, const std::string& ext) {
+  std::ifstream in(path);
+  std::string line;
+  long lineno = 0, off_vertices = -1;  // OFF: vertex lines still to read, once counted
+  bool off_header = false;
+  auto fields = [](const std::string& l, std::size_t from, int n, std::string& bad) {
+    const char* c = l.c_str() + from;
+    for (int i = 0; i < n; ++i) {
+      while (*c == ' ' || *c == '\t') ++c;
+      const char* start = *c == '+' ? c + 1 : c;  // from_chars takes no '+', strtod does
+      double x;
+      const char* end = std::from_chars(start, l.c_str() + l.size(), x).ptr;
+      if (end == start || (*end && !std::isspace(static_cast<unsigned char>(*end)))) {
+        const char* stop = c;
+        while (*stop && !std::isspace(static_cast<unsigned char>(*stop))) ++stop;
+        bad = std::string(c, stop);
+        return false;
+      }
+      c = end;
+    }
+    return true;
+  };
+  std::string bad;
+  while (std::getline(in, line)) {
+    ++lineno;
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    bool ok = true;
+    if (ext == "obj") {
+      if (line[first] != 'v' || first + 1 >= line.size() || !std::isspace(static_cast<unsigned char>(line[first + 1])))
+        continue;
+      ok = fields(line, first + 1, 3, bad);
+    } else if (!off_header) {  // "OFF", "COFF", ... possibly followed by the counts
+      off_header = true;
+      const std::size_t word_end = line.find_first_of(" \t\r", first);
+      if (word_end != std::string::npos && line.find_first_not_of(" \t\r", word_end) != std::string::npos)
+        off_vertices = std::strtol(line.c_str() + word_end, nullptr, 10);
+    } else if (off_vertices < 0) {
+      off_vertices = std::strtol(line.c_str() + first, nullptr, 10);
+    } else if (off_vertices > 0) {
+      --off_vertices;
+      ok = fields(line, first, 3, bad);
+    } else {
+      break;  // the faces: vcglib checks their indices
+    }
+    if (!ok) fail(path, "line " + std::to_string(lineno) + ": '" + bad + "' is not a number (a vertex coordinate)");
+  }
+}
+
 void load_vcg(const std::string& path, TMesh& m) {
   const std::string ext = extension_of(path);
   std::error_code ec;
@@ -66,11 +121,13 @@ void load_vcg(const std::string& path, TMesh& m) {
     const int err = vcg::tri::io::ImporterPLY<TMesh>::Open(m, path.c_str(), mask);
     if (err != 0) fail(path, std::string("unreadable PLY (") + vcg::tri::io::ImporterPLY<TMesh>::ErrorMsg(err) + ")");
   } else if (ext == "obj") {
+    check_vertex_numbers(path, ext);
     vcg::tri::io::ImporterOBJ<TMesh>::Info info;
     const int err = vcg::tri::io::ImporterOBJ<TMesh>::Open(m, path.c_str(), info);
     if (err != 0 && vcg::tri::io::ImporterOBJ<TMesh>::ErrorCritical(err))
       fail(path, std::string("unreadable OBJ (") + vcg::tri::io::ImporterOBJ<TMesh>::ErrorMsg(err) + ")");
   } else if (ext == "off") {
+    check_vertex_numbers(path, ext);
     int mask = 0;
     const int err = vcg::tri::io::ImporterOFF<TMesh>::Open(m, path.c_str(), mask);
     if (err != 0) fail(path, std::string("unreadable OFF (") + vcg::tri::io::ImporterOFF<TMesh>::ErrorMsg(err) + ")");
