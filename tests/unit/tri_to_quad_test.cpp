@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <fstream>
 #include <set>
@@ -132,4 +133,45 @@ TEST(TriToQuad, stanford_bunny_from_glmark2) {
   Input in = load_input(p);
   expect_good_quads(in.reference, in.quads);
   EXPECT_EQ(in.quads.n_faces(), 34833u);
+}
+
+TEST(PrepareInput, quads_that_need_repairs_are_paired_again_from_their_triangles) {
+  // A 6 x 6 quad grid, as it is, as a soup (each quad with its own corners) and with one
+  // quad turned over. Taken as they are, the soup stayed 36 separate quads that no
+  // collapse could join, and the turned quad made the whole file refused.
+  const int n = 6;
+  MeshFile grid;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) grid.positions.emplace_back(i, j, 0.1 * i * j);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Index a = Index(j * (n + 1) + i);
+      grid.quads.push_back({a, a + 1, a + n + 2, a + n + 1});
+    }
+  MeshFile soup, turned = grid;
+  for (const auto& q : grid.quads) {
+    std::array<Index, 4> own;
+    for (int k = 0; k < 4; ++k) {
+      own[k] = Index(soup.positions.size());
+      soup.positions.push_back(grid.positions[q[k]]);
+    }
+    soup.quads.push_back(own);
+  }
+  std::reverse(turned.quads[7].begin(), turned.quads[7].end());
+  auto border_vertices = [](const QuadMesh& q) {
+    Index b = 0;
+    for (Index v = 0; v < q.vertex_capacity(); ++v) b += q.is_vertex_live(v) && q.is_border_vertex(v);
+    return b;
+  };
+  const Input as_is = prepare_input(grid, "grid");
+  EXPECT_TRUE(as_is.was_pure_quad);
+  EXPECT_EQ(as_is.quads.n_faces(), Index(n * n));
+  for (const MeshFile& f : {soup, turned}) {
+    std::vector<std::string> notes;
+    const Input in = prepare_input(f, "in", {}, [&](std::string_view m) { notes.emplace_back(m); });
+    EXPECT_FALSE(in.was_pure_quad);
+    validate(in.quads);
+    EXPECT_EQ(border_vertices(in.quads), Index(4 * n)) << "one connected sheet";
+    EXPECT_NE(notes.back().find("paired into quads again"), std::string::npos) << notes.back();
+  }
 }

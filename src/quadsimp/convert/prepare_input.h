@@ -15,13 +15,14 @@ namespace qs {
 struct Input {
   TriMesh reference;       //!< M0: the cleaned input triangles (quads split in two)
   QuadMesh quads;          //!< the pure quad mesh to simplify
-  bool was_pure_quad = false;
+  bool was_pure_quad = false;  //!< the input's quads were taken as they are
   CleanReport clean;
   ConvertReport convert;   //!< empty when the input was already pure quad
 };
 
 //! Repairs what has a standard repair (logged through `log`) and converts triangles
-//! to quads; a pure quad mesh is taken as it is. `name` prefixes every message.
+//! to quads; a pure quad mesh is taken as it is, unless cleaning repaired it: then its
+//! triangles are converted like any others. `name` prefixes every message.
 //! The CLI (from a file) and the MeshLab plugins (from a layer) both come here.
 //! \throw InvalidInput "NAME: reason" for anything that cannot be used.
 Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions& options = {},
