@@ -81,7 +81,7 @@ TEST(Clean, merges_copies_of_a_pole_a_rounding_error_apart) {
   for (const auto& adj : triangle_adjacency(t))
     for (Index g : adj) EXPECT_NE(g, kNone) << "a border is left where the copies were";
   EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) {
-    return n.find("merged into one closer than 1e-6") != std::string::npos;
+    return n.find("merged with a border vertex closer than 1e-6") != std::string::npos;
   }));
 }
 

@@ -427,7 +427,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
       if (n) log(src + ": " + std::to_string(n) + " " + what);
     };
     note(r.merged_duplicate_vertices, "duplicate vertices merged");
-    note(r.merged_close_vertices, "border vertices merged into one closer than 1e-6 of the bounding-box diagonal");
+    note(r.merged_close_vertices, "border vertices merged with a border vertex closer than 1e-6 of the bounding-box diagonal");
     note(r.removed_degenerate_faces, "degenerate faces removed");
     note(r.removed_duplicate_faces, "duplicate faces removed");
     note(r.removed_unreferenced_vertices, "unreferenced vertices removed");
