@@ -32,6 +32,7 @@ TEST(Clean, leaves_a_clean_mesh_alone) {
   EXPECT_EQ(t.faces, before.faces);
   EXPECT_EQ(t.positions.size(), before.positions.size());
   EXPECT_EQ(r.merged_duplicate_vertices + r.removed_degenerate_faces + r.flipped_faces, 0u);
+  EXPECT_FALSE(r.changed_faces());
 }
 
 TEST(Clean, repairs_and_logs) {
@@ -50,6 +51,7 @@ TEST(Clean, repairs_and_logs) {
   EXPECT_EQ(r.removed_unreferenced_vertices, 1u);
   EXPECT_EQ(r.removed_duplicate_faces, 2u);
   EXPECT_EQ(r.removed_degenerate_faces, 2u);
+  EXPECT_TRUE(r.changed_faces());
   EXPECT_EQ(t.n_faces(), nf);
   EXPECT_EQ(t.n_vertices(), 16u);
   EXPECT_GE(notes.size(), 4u);

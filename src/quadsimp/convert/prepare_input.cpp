@@ -14,9 +14,7 @@ Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions
   // re-oriented) no longer match the repaired triangles: an unwelded quad soup stayed 100
   // separate quads that no collapse could join, one flipped quad refused the whole file.
   // Their triangles are paired again instead, as for a triangle mesh.
-  const CleanReport& c = in.clean;
-  const bool repaired = c.merged_duplicate_vertices + c.merged_close_vertices + c.removed_degenerate_faces +
-                            c.removed_duplicate_faces + c.split_nonmanifold_vertices + c.flipped_faces > 0;
+  const bool repaired = in.clean.changed_faces();
   in.was_pure_quad = file.is_pure_quad() && !repaired;
   if (file.is_pure_quad() && repaired && log)
     log(name + ": the quads needed the repairs above; their triangles are paired into quads again");
