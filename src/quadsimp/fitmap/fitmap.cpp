@@ -54,12 +54,11 @@ Moments triangle_moments(const Vec3& a, const Vec3& b, const Vec3& c) {
   return m;
 }
 
-// The moments of every triangle about working_origin(), returned in `centre`. The plane
-// fit takes the covariance as second moments minus the mean's square, which cancels
-// digits as the square of (distance from the origin / radius): a plane a million units
-// from the origin (survey coordinates) lost them all and got random fitmaps.
-std::vector<Moments> moments_about_centre(const TriMesh& t, Vec3& centre) {
-  centre = working_origin(t.positions);
+// The moments of every triangle about `centre` (working_origin()). The plane fit takes
+// the covariance as second moments minus the mean's square, which cancels digits as the
+// square of (distance from the origin / radius): a plane a million units from the origin
+// (survey coordinates) lost them all and got random fitmaps.
+std::vector<Moments> moments_about(const TriMesh& t, const Vec3& centre) {
   std::vector<Moments> tm(t.n_faces());
   for (Index f = 0; f < t.n_faces(); ++f) {
     const auto& v = t.faces[f];
@@ -313,8 +312,8 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
   const std::vector<double> radii = fitmap_radii(t, opt.levels);
   const Index nv = t.n_vertices(), nl = Index(radii.size());
   const Incidence inc(t);
-  Vec3 centre;
-  const std::vector<Moments> tm = moments_about_centre(t, centre);
+  const Vec3 centre = working_origin(t.positions);  // cell balls take points about it too
+  const std::vector<Moments> tm = moments_about(t, centre);
   std::vector<double> error(std::size_t(nv) * nl, 0), frac(std::size_t(nv) * nl, 0);
   std::vector<char> ok(std::size_t(nv) * nl, 0);
   tbb::enumerable_thread_specific<Scratch> scratch;
@@ -377,8 +376,7 @@ Fitmaps compute_fitmaps_unsmoothed(const TriMesh& mesh, const FitmapOptions& opt
 Fitmaps fitmaps_brute_force(const TriMesh& t, const std::vector<Index>& vertices, const FitmapOptions& opt) {
   const std::vector<double> radii = fitmap_radii(t, opt.levels);
   const Incidence inc(t);
-  Vec3 centre;
-  const std::vector<Moments> tm = moments_about_centre(t, centre);
+  const std::vector<Moments> tm = moments_about(t, working_origin(t.positions));
   Fitmaps out;
   out.s.assign(vertices.size(), 0.f);
   out.m.assign(vertices.size(), 0.f);
