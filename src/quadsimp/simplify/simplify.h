@@ -31,14 +31,15 @@ struct SimplifyOptions {
   //! points higher than 0.3's on the seven-count windows around both settings' halting
   //! counts on the bunny and the gargoyle (armadillo 1 to 2 lower), and 1.3 points
   //! higher over twelve fixed counts; before refuse_folds it took the moai under
-  //! 70% regular vertices, now 74.5% (bench/RESULTS.md).
+  //! 70% regular vertices, with it 74.5% (80.3% since mu is recounted often enough on
+  //! small meshes; bench/RESULTS.md).
   double s_percentiles = 0.2;
   //! Automatic halting (adaptive mode without a face target): stop once the faces whose
   //! collapse the M-fitmap refused, and that have not changed since, cover this share
   //! of the surface. 1 runs on until no feasible collapse remains (the paper's rule).
   //! Ours: with the paper's rule the blocked parts stay put while the rest keeps
-  //! coarsening, far past what the fitmap's error balance asks (bunny: 319 quads, RMS
-  //! 1.9x the uniform result at that count, 99.4% projectable). 0.05 is the
+  //! coarsening, far past what the fitmap's error balance asks (bunny: 242 quads, RMS
+  //! 2.8x the uniform result at that count, 93.4% projectable). 0.05 is the
   //! M-fitmap's own tolerance tau (bench/RESULTS.md).
   double halt_share = 0.05;
   //! Gauss-Seidel sweeps of the spring relaxation after each collapse.
