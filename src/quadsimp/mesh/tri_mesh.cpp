@@ -118,6 +118,15 @@ void merge_duplicate_vertices(TriMesh& m, CleanReport& r) {
     for (Index& v : t) v = map[v];
 }
 
+std::pair<Vec3, Vec3> bbox(const std::vector<Vec3>& positions) {
+  Vec3 lo = positions.empty() ? Vec3::Zero() : positions[0], hi = lo;
+  for (const Vec3& p : positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {lo, hi};
+}
+
 // Rounding leaves copies of one point a few ulps apart (a pole written once per
 // triangle of its fan, an unwelded seam): exact merging misses them, and they bound a
 // hole of no size whose border the simplifier must keep (on a sphere: edges of length
@@ -138,10 +147,10 @@ bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index,
   // Cells of 1024 eps, 21 bits per axis from the box's corner (the box spans 1000):
   // a vertex is compared with the others in its cell, and with a neighbour cell's only
   // when within eps of it.
-  const double eps = 1e-6 * bbox_diagonal(m.positions), cell = 1024 * eps;
+  const auto box = bbox(m.positions);
+  const Vec3 corner = box.first;  // a lambda below captures it: not a structured binding
+  const double eps = 1e-6 * (box.second - box.first).norm(), cell = 1024 * eps;
   if (!(eps > 0)) return false;
-  Vec3 corner = m.positions[border[0]];
-  for (Index v : border) corner = corner.cwiseMin(m.positions[v]);
   const auto cell_of = [&](Index v, int i) { return std::int64_t(std::floor((m.positions[v][i] - corner[i]) / cell)); };
   const auto key_of = [](std::int64_t x, std::int64_t y, std::int64_t z) {
     return std::uint64_t(x) << 42 | std::uint64_t(y) << 21 | std::uint64_t(z);
@@ -346,17 +355,6 @@ void sort_spatially(TriMesh& m) {
 }
 
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& t) { return adjacency_from(t, corners_around(t)); }
-
-namespace {
-std::pair<Vec3, Vec3> bbox(const std::vector<Vec3>& positions) {
-  Vec3 lo = positions.empty() ? Vec3::Zero() : positions[0], hi = lo;
-  for (const Vec3& p : positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return {lo, hi};
-}
-}  // namespace
 
 double bbox_diagonal(const std::vector<Vec3>& positions) {
   const auto [lo, hi] = bbox(positions);
