@@ -136,12 +136,12 @@ int run_simplify(const SimplifyArgs& a) {
       const QuadQuality full = quad_quality(in.quads, &ref);
       if (a.json) {
         std::string j = to_json(full, &d);
-        char extra[256];
+        char extra[512];
         std::snprintf(extra, sizeof extra,
-                      ", \"seconds\": %.4f, \"collapses\": %u, \"border_collapses\": %u, \"rotations\": %u, \"input_faces\": %u, "
+                      ", \"seconds\": %.4f, \"collapses\": %u, \"border_collapses\": %u, \"rotations\": %u, \"unfolds\": %u, \"input_faces\": %u, "
                       "\"refused\": {\"topology\": %u, \"valence\": %u, \"geometry\": %u, \"fitmap\": %u}, "
                       "\"blocked_share\": %.4f}",
-                      s, r.collapses, r.border_collapses, r.rotations, r.initial_faces, r.refused_topology, r.refused_valence,
+                      s, r.collapses, r.border_collapses, r.rotations, r.unfolds, r.initial_faces, r.refused_topology, r.refused_valence,
                       r.refused_geometry, r.refused_fitmap, r.blocked_share);
         j.pop_back();
         std::printf("%s%s\n", j.c_str(), extra);

@@ -69,6 +69,8 @@ class Simplifier {
   void add_faces_around(Index v, std::vector<Index>& faces);
   void rotate_in_region();
   bool try_rotate(Index h);
+  void unfold();
+  bool unfold_face(Index f);
   bool rotation_follows_reference(Index h, Rotation r, Index except = kNone) const;
   void smooth_region(int sweeps);
   void smooth_vertex(Index v);
@@ -135,6 +137,7 @@ class Simplifier {
   // upper bound that spares the recount while it stays under the halting share.
   double blocked_bound_ = 0;
   double area_ = 0;  // of the mesh at the start
+  bool refuse_folds_ = false;  // opt_.refuse_folds, and on during unfold()
 };
 
 // Where a spring of length `rest` from q would put p: on the sphere of that radius
@@ -223,7 +226,7 @@ bool Simplifier::shape_ok(Index f, const Vec3* q, const Vec3& extra_normal, bool
   if (!follows_reference(n, c, q, extra_normal)) return false;
   const Vec3 p[4] = {m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3])};
   if (!quad_is_convex(q[0], q[1], q[2], q[3], n) && quad_is_convex(p[0], p[1], p[2], p[3])) return false;
-  return !(opt_.refuse_folds && bend_check &&
+  return !(refuse_folds_ && bend_check &&
            quad_folds_further(q[0], q[1], q[2], q[3], [&] { return quad_fold_cos(p[0], p[1], p[2], p[3]); }));
 }
 
@@ -668,7 +671,66 @@ void Simplifier::after_change(std::initializer_list<Index> touched) {
   requeue_region();
 }
 
+// Unfolding (ours; SimplifyOptions::unfold): a quad bent past 90 degrees wraps a thin
+// part (an ear's rim, a claw) too narrow for its size. Refusing such bends during the
+// loop, as adaptive mode does, cost uniform meshes homeometry (bench/RESULTS.md); one
+// rotation afterwards re-pairs the corners across the part instead. Of the rotations
+// of f's interior edges that leave neither new quad folded, the one whose new quads
+// bend least is taken, then the zone is smoothed with folds refused, so that the
+// springs even out the new edge without bending anything past 90 degrees again.
+bool Simplifier::unfold_face(Index f) {
+  auto fold_cos = [&](const std::array<Index, 4>& c) {
+    return quad_fold_cos(m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3]));
+  };
+  double best = -1;
+  Index best_h = kNone;
+  Rotation best_r = Rotation::Ccw;
+  for (Index k = 0; k < 4; ++k) {
+    const Index h = QuadMesh::halfedge(f, k), g = m_.twin(h);
+    if (g == kNone) continue;
+    for (Rotation r : {Rotation::Ccw, Rotation::Cw}) {
+      // The new edge's endpoints (see edge_rotation.h) gain one edge each.
+      const bool ccw = r == Rotation::Ccw;
+      const Index a = ccw ? m_.to(QuadMesh::next(h)) : m_.from(QuadMesh::prev(h));
+      const Index b = ccw ? m_.to(QuadMesh::next(g)) : m_.from(QuadMesh::prev(g));
+      if (opt_.max_valence > 0 && std::max(m_.valence(a), m_.valence(b)) >= opt_.max_valence) continue;
+      if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r) || !rotation_follows_reference(h, r)) continue;
+      const auto c = rotated_faces(m_, h, r);
+      // Not folded <=> some split bends by less than 90 degrees <=> fold_cos >= 0.
+      const double after = std::min(fold_cos(c[0]), fold_cos(c[1]));
+      if (after >= 0 && after > best) best = after, best_h = h, best_r = r;
+    }
+  }
+  if (best_h == kNone) return false;
+  const Index g = QuadMesh::face(m_.twin(best_h));
+  rotate_edge(m_, best_h, best_r);
+  ++version_[f], ++version_[g];
+  region_faces_.clear();
+  for (Index x : {f, g})
+    for (Index k = 0; k < 4; ++k) add_faces_around(m_.vertex(x, k), region_faces_);
+  smooth_region(opt_.smoothing_sweeps);
+  return true;
+}
+
+// A rotation can unfold a quad next to one whose only unfolding rotation it had taken:
+// a few passes, which end as soon as one finds nothing to do.
+void Simplifier::unfold() {
+  refuse_folds_ = true;
+  auto folded = [&](Index f) {
+    const auto c = m_.face_vertices(f);
+    return quad_folds(m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3]));
+  };
+  for (int pass = 0; pass < 3; ++pass) {
+    const Index before = rep_.unfolds;
+    for (Index f = 0; f < m_.face_capacity(); ++f)
+      if (m_.is_face_live(f) && folded(f) && unfold_face(f)) ++rep_.unfolds;
+    if (rep_.unfolds == before) break;
+  }
+  refuse_folds_ = opt_.refuse_folds;
+}
+
 SimplifyReport Simplifier::run() {
+  refuse_folds_ = opt_.refuse_folds;
   const auto t0 = std::chrono::steady_clock::now();
   if (opt_.adaptive && (!opt_.fitmaps || opt_.fitmaps->s.size() != ref_.mesh().n_vertices() ||
                         opt_.fitmaps->m.size() != ref_.mesh().n_vertices()))
@@ -770,6 +832,7 @@ SimplifyReport Simplifier::run() {
     }
   }
   if (opt_.adaptive) rep_.blocked_share = blocked_share();
+  if (opt_.unfold && !opt_.refuse_folds && !rep_.cancelled) unfold();
   m_.compact();
   rep_.faces = m_.n_faces();
   rep_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
