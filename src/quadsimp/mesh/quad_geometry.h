@@ -52,6 +52,16 @@ inline double quad_fold_cos(const Vec3& p0, const Vec3& p1, const Vec3& p2, cons
                   cos_between((p1 - p0).cross(p3 - p0), (p2 - p1).cross(p3 - p1)));
 }
 
+//! The same two for a quad given by its corner ids into `pos` (a mesh's positions()).
+template <class Positions, class Corners>
+bool quad_folds(const Positions& pos, const Corners& c) {
+  return quad_folds(pos[c[0]], pos[c[1]], pos[c[2]], pos[c[3]]);
+}
+template <class Positions, class Corners>
+double quad_fold_cos(const Positions& pos, const Corners& c) {
+  return quad_fold_cos(pos[c[0]], pos[c[1]], pos[c[2]], pos[c[3]]);
+}
+
 //! The fold rule of the checks: the quad folds (quad_folds()) and bends further than
 //! `before()`, a quad_fold_cos() each caller takes from its own "before" (the face now,
 //! the more bent of two faces, the face at the start). The cheap sign test goes first,

@@ -58,9 +58,6 @@ bool can_rotate_edge(const QuadMesh& m, Index h, Rotation r) {
 }
 
 bool rotation_folds(const QuadMesh& m, Index h, Rotation r, Index except, bool bends) {
-  auto fold_cos = [&](const std::array<Index, 4>& q) {
-    return quad_fold_cos(m.position(q[0]), m.position(q[1]), m.position(q[2]), m.position(q[3]));
-  };
   const Hexagon x = hexagon(m, h);
   const Vec3 ref = m.face_area_normal(x.f1) + m.face_area_normal(x.f2);
   double bent_now = 2;  // the more bent of the two faces now, computed only when needed
@@ -69,7 +66,9 @@ bool rotation_folds(const QuadMesh& m, Index h, Rotation r, Index except, bool b
     const Vec3 &p0 = m.position(q[0]), &p1 = m.position(q[1]), &p2 = m.position(q[2]), &p3 = m.position(q[3]);
     if (!quad_keeps_orientation(p0, p1, p2, p3, ref) || !quad_is_convex(p0, p1, p2, p3)) return true;
     if (bends && quad_folds_further(p0, p1, p2, p3, [&] {
-          if (bent_now > 1) bent_now = std::min(fold_cos(m.face_vertices(x.f1)), fold_cos(m.face_vertices(x.f2)));
+          if (bent_now > 1)
+            bent_now = std::min(quad_fold_cos(m.positions(), m.face_vertices(x.f1)),
+                                quad_fold_cos(m.positions(), m.face_vertices(x.f2)));
           return bent_now;
         }))
       return true;

@@ -82,9 +82,10 @@ struct SimplifyOptions {
   //! (bench/RESULTS.md), so it stays off there for now.
   bool refuse_folds = false;
   //! Without refuse_folds: once the target is reached, rotate an edge of each folded
-  //! quad where that leaves neither of the two new quads folded, then smooth around it
-  //! with folds refused. Ours. Over 41 uniform runs of the six models (600 to 13,000
-  //! quads) folded quads went from 87 to 24, with the same runs within [0.5, 2] mu, the
+  //! quad where that leaves neither of the two new quads folded, or else move one of its
+  //! corners along M0 so that it bends less, then smooth around it with folds refused.
+  //! Ours. Over 41 uniform runs of the six models (600 to 13,000 quads) folded quads went
+  //! from 87 to 8 (24 with rotations alone), with the same runs within [0.5, 2] mu, the
   //! same mean RMS and 0.1 points fewer regular vertices (bench/RESULTS.md).
   bool unfold = true;
   //! Called with the fraction done; returning false stops early with a valid mesh.
@@ -97,7 +98,7 @@ struct SimplifyReport {
   Index collapses = 0;
   Index border_collapses = 0;  //!< border ear collapses (coarsen_border)
   Index rotations = 0;
-  Index unfolds = 0;  //!< rotations that unfolded a quad after the last collapse (unfold)
+  Index unfolds = 0;  //!< rotations and corner moves that unfolded a quad (or bent it less) at the end
   Index doublets = 0;
   Index singlets = 0;
   Index relaxations = 0;  //!< vertices the spring smoothing visited (moved or found at rest)

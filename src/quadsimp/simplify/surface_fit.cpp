@@ -98,7 +98,7 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
     FaceStart& s = face_start[f];
     s.normal = m.face_area_normal(f);
     s.convex = quad_is_convex(m.position(c[0]), m.position(c[1]), m.position(c[2]), m.position(c[3]));
-    s.fold_cos = quad_fold_cos(m.position(c[0]), m.position(c[1]), m.position(c[2]), m.position(c[3]));
+    s.fold_cos = quad_fold_cos(m.positions(), c);
     s.agrees = true;
     s.agrees = face_ok(f, s);
   });
