@@ -101,17 +101,24 @@ class Simplifier {
     foot_face_[v] = s.face;
     if (opt_.adaptive) size_[v] = target_size(ref_.interpolate(opt_.fitmaps->s, s));
   }
+  void label_components();
   void update_mu();
+  // The mean edge of v's connected component: what its springs and the thresholds
+  // scaled by the edge length use (see label_components()).
+  double mu_at(Index v) const { return component_mu_[component_[v]]; }
   // Spring rest length between u and v, for an edge (diagonals: times sqrt(2)).
   double rest_length(Index u, Index v) const {
-    return opt_.adaptive ? mu_ * 0.5 * (size_[u] + size_[v]) / size_mean_ : mu_;
+    const double mu = mu_at(u);
+    return opt_.adaptive ? mu * 0.5 * (size_[u] + size_[v]) / size_mean_ : mu;
   }
 
   QuadMesh& m_;
   const ReferenceSurface& ref_;
   const SimplifyOptions& opt_;
   SimplifyReport rep_;
-  double mu_ = 0;
+  double mu_ = 0;  // the mean edge of the whole mesh: search radii
+  std::vector<Index> component_;     // per vertex
+  std::vector<double> component_mu_;  // per component
   std::vector<std::uint32_t> version_, face_mark_, vertex_mark_;
   // Reference normal under each vertex (at its last projection): faces are checked
   // against these, so that no sequence of small turns can flip a face.
@@ -125,6 +132,7 @@ class Simplifier {
   std::uint32_t stamp_ = 0;
   std::vector<Entry> heap_;
   std::vector<Index> region_faces_, region_verts_, work_, cand_, border_verts_;
+  std::vector<std::size_t> edge_count_;  // per component, for update_mu()
   bool has_border_ = false;  // no operator makes a border where there was none
   // Faces the M-fitmap refused to enlarge, with their version and area then: while a
   // face keeps that version it is still blocked (see SimplifyOptions::halt_share).
@@ -312,8 +320,55 @@ bool Simplifier::m_fitmap_allows(Index f, Index k, const Vec3& pos) const {
   });
 }
 
+// Components keep their own mean edge. With one mu for all, a part too small to hold
+// quads of the mesh's size (a sphere a tenth the size of another, beside it) had
+// springs longer than itself: its quads crumpled (edges from 0.02 to 8 mu), every
+// collapse there was refused at 75 quads, and the target was reached by taking the
+// large sphere down to 8. No operator joins or splits components, so the labels hold.
+void Simplifier::label_components() {
+  component_.assign(m_.vertex_capacity(), kNone);
+  Index n = 0;
+  for (Index seed = 0; seed < m_.vertex_capacity(); ++seed) {
+    if (!m_.is_vertex_live(seed) || component_[seed] != kNone) continue;
+    component_[seed] = n;
+    work_.assign(1, seed);
+    while (!work_.empty()) {
+      const Index v = work_.back();
+      work_.pop_back();
+      m_.for_each_outgoing(v, [&](Index h) {
+        for (Index k = 0; k < 4; ++k) {
+          const Index w = m_.vertex(QuadMesh::face(h), k);
+          if (component_[w] == kNone) component_[w] = n, work_.push_back(w);
+        }
+      });
+    }
+    ++n;
+  }
+  component_mu_.assign(n, 0.0);
+}
+
 void Simplifier::update_mu() {
-  mu_ = mean_edge_length(m_);
+  // As mean_edge_length(), summed per component too (in the same order: one component
+  // gives exactly the mesh's mean).
+  std::vector<double>& length = component_mu_;
+  std::fill(length.begin(), length.end(), 0.0);
+  edge_count_.assign(length.size(), 0);
+  double total = 0;
+  std::size_t edges = 0;
+  for (Index f = 0; f < m_.face_capacity(); ++f) {
+    if (!m_.is_face_live(f)) continue;
+    const Index c = component_[m_.vertex(f, 0)];
+    for (Index k = 0; k < 4; ++k) {
+      const Index h = QuadMesh::halfedge(f, k), t = m_.twin(h);
+      if (t != kNone && t < h) continue;  // each edge once
+      const double len = (m_.position(m_.vertex(f, k)) - m_.position(m_.vertex(f, k + 1))).norm();
+      length[c] += len, ++edge_count_[c];
+      total += len, ++edges;
+    }
+  }
+  mu_ = edges ? total / double(edges) : 0.0;
+  for (std::size_t c = 0; c < length.size(); ++c)
+    length[c] = edge_count_[c] ? length[c] / double(edge_count_[c]) : mu_;
   if (!opt_.adaptive) return;
   double sum = 0;
   Index n = 0;
@@ -514,7 +569,7 @@ void Simplifier::smooth_vertex(Index v) {
     step = d - d.dot(n) * n;
   }
   // Already at rest: skip the projection and the checks (most vertices in later sweeps).
-  if (step.squaredNorm() < 1e-4 * mu_ * mu_) return;
+  if (step.squaredNorm() < 1e-4 * mu_at(v) * mu_at(v)) return;
   // A step the checks refuse is tried again at half and a quarter of its length. All or
   // nothing left faces squeezed between neighbours stuck for good: on pensatore at 15K a
   // quad with a diagonal of 0.29 mu (corners at 4 and 8 degrees) whose every spring step
@@ -595,7 +650,7 @@ bool Simplifier::remove_border_vertex(Index b) {
   const Index a = m_.from(ha), c = m_.to(out);
   const double ab = (m_.position(a) - m_.position(b)).norm(), bc = (m_.position(b) - m_.position(c)).norm();
   const int valence = m_.valence(b);
-  if (ab + bc >= kBorderShort * mu_ || valence > 3) return false;
+  if (ab + bc >= kBorderShort * mu_at(b) || valence > 3) return false;
   // a, b and c merge into one vertex, at b unless a or c is a corner, which then keeps
   // its place (merging at b cut the corners of an L-shaped grid by a third of mu).
   const bool corner_a = is_border_corner(a), corner_c = is_border_corner(c);
@@ -740,7 +795,7 @@ bool Simplifier::relocate_corner(Index f) {
       m_.for_each_outgoing(v, [&](Index h) {
         const Vec3& q = m_.position(m_.to(h));
         const double before = (m_.position(v) - q).norm(), len = (foot.point - q).norm();
-        even = even && len >= std::min(0.5 * mu_, before) && len <= std::max(2.0 * mu_, before);
+        even = even && len >= std::min(0.5 * mu_at(v), before) && len <= std::max(2.0 * mu_at(v), before);
       });
       if (even) best = after, best_v = v, best_foot = foot;
     }
@@ -799,6 +854,7 @@ SimplifyReport Simplifier::run() {
     }
   for (Index v = 0; v < m_.vertex_capacity() && !has_border_; ++v)
     has_border_ = m_.is_vertex_live(v) && m_.is_border_vertex(v);
+  label_components();
   update_mu();
   if (opt_.initial_sweeps > 0) {
     region_faces_.clear();
