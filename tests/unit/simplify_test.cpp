@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -149,6 +150,26 @@ TEST(Simplify, a_small_grid_reaches_a_coarse_target_with_even_quads) {
   EXPECT_EQ(q.flipped_faces + q.nonconvex_faces, 0u);
   EXPECT_GT(q.homeometry_min, 0.2);
   EXPECT_LT(q.homeometry_max, 2.5);
+}
+
+TEST(Simplify, border_coarsening_keeps_the_valence_cap) {
+  // A wavy sheet of cells 50 times longer than wide: border vertices are removed next
+  // to the corners, which keep their place and take in each removed vertex's edges.
+  // Without the cap on the merged vertex (val(a) + val(c) - 3), a corner ended with
+  // valence 11.
+  for (double wave : {0.05, 0.1}) {
+    SCOPED_TRACE(wave);
+    TriMesh t = tri_grid(200, 4);
+    for (Vec3& p : t.positions) p.z() = wave * std::sin(6 * p.x()) * std::cos(6 * p.y());
+    Case c = prepare(std::move(t));
+    const ReferenceSurface ref(c.tri);
+    SimplifyOptions opt;
+    opt.target_faces = 300;
+    const SimplifyReport r = simplify(c.quads, ref, opt);
+    validate(c.quads);
+    EXPECT_GT(r.border_collapses, 0u);
+    EXPECT_LE(quad_quality(c.quads).max_valence, opt.max_valence);
+  }
 }
 
 TEST(Simplify, flat_square_keeps_its_corners_and_coarsens_its_border) {

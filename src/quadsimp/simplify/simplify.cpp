@@ -73,6 +73,7 @@ class Simplifier {
   bool unfold_face(Index f);
   bool relocate_corner(Index f);
   bool rotation_follows_reference(Index h, Rotation r, Index except = kNone) const;
+  bool rotation_passes_cap(Index h, Rotation r) const;
   void smooth_region(int sweeps);
   void smooth_vertex(Index v);
   bool moved_faces_ok(Index v, const Vec3& p) const;
@@ -399,6 +400,17 @@ void Simplifier::add_faces_around(Index v, std::vector<Index>& faces) {
   m_.for_each_outgoing(v, [&](Index h) { faces.push_back(QuadMesh::face(h)); });
 }
 
+// The new edge's endpoints (see edge_rotation.h) gain one edge each: both must stay
+// within the valence cap.
+bool Simplifier::rotation_passes_cap(Index h, Rotation r) const {
+  if (opt_.max_valence <= 0) return true;
+  const Index g = m_.twin(h);
+  const bool ccw = r == Rotation::Ccw;
+  const Index a = ccw ? m_.to(QuadMesh::next(h)) : m_.from(QuadMesh::prev(h));
+  const Index b = ccw ? m_.to(QuadMesh::next(g)) : m_.from(QuadMesh::prev(g));
+  return std::max(m_.valence(a), m_.valence(b)) < opt_.max_valence;
+}
+
 // As rotation_folds(), a rotated face with corner `except` is not checked.
 bool Simplifier::rotation_follows_reference(Index h, Rotation r, Index except) const {
   for (const auto& c : rotated_faces(m_, h, r)) {
@@ -658,6 +670,11 @@ bool Simplifier::remove_border_vertex(Index b) {
   const Vec3 keep = m_.position(corner_a ? a : corner_c ? c : b);
   // The ear is f with b at corner k, once b has a single face.
   auto try_ear = [&](Index ear, Index k) {
+    // The merged vertex has val(a) + val(c) - 3 edges (border_ear.h). Unchecked, a
+    // corner that kept its place took in its border neighbours one after another: the
+    // corner of a grid of 200 x 4 skinny cells ended with valence 14.
+    const int merged = m_.valence(m_.vertex(ear, k + 3)) + m_.valence(m_.vertex(ear, k + 1)) - 3;
+    if (opt_.max_valence > 0 && merged > opt_.max_valence) return false;
     const SurfacePoint foot = ref_.closest(keep);
     if (!can_collapse_border_ear(m_, ear, k) || !foot.found() ||
         !for_each_face_after_collapse(m_, ear, (k + 1) & 3u, keep,
@@ -684,7 +701,7 @@ bool Simplifier::remove_border_vertex(Index b) {
   // or turns outwards (the ear's angle at b is then 180 degrees or more): on bunny.ply
   // at 11K, border edges of 0.44 mu stayed along a hole's staircase border.
   for (Rotation r : {Rotation::Ccw, Rotation::Cw}) {
-    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r, b, opt_.refuse_folds) ||
+    if (!rotation_passes_cap(h, r) || !can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r, b, opt_.refuse_folds) ||
         !rotation_follows_reference(h, r, b))
       continue;
     rotate_edge(m_, h, r);
@@ -742,12 +759,9 @@ bool Simplifier::unfold_face(Index f) {
     const Index h = QuadMesh::halfedge(f, k), g = m_.twin(h);
     if (g == kNone) continue;
     for (Rotation r : {Rotation::Ccw, Rotation::Cw}) {
-      // The new edge's endpoints (see edge_rotation.h) gain one edge each.
-      const bool ccw = r == Rotation::Ccw;
-      const Index a = ccw ? m_.to(QuadMesh::next(h)) : m_.from(QuadMesh::prev(h));
-      const Index b = ccw ? m_.to(QuadMesh::next(g)) : m_.from(QuadMesh::prev(g));
-      if (opt_.max_valence > 0 && std::max(m_.valence(a), m_.valence(b)) >= opt_.max_valence) continue;
-      if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r) || !rotation_follows_reference(h, r)) continue;
+      if (!rotation_passes_cap(h, r) || !can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r) ||
+          !rotation_follows_reference(h, r))
+        continue;
       const auto c = rotated_faces(m_, h, r);
       // Not folded <=> some split bends by less than 90 degrees <=> fold_cos >= 0.
       const double after = std::min(quad_fold_cos(m_.positions(), c[0]), quad_fold_cos(m_.positions(), c[1]));
