@@ -259,11 +259,7 @@ TEST(Simplify, table1_rows_meet_the_uniform_targets) {
 }
 
 TEST(Simplify, two_components_both_survive) {
-  TriMesh t = tri_sphere(30, 40);
-  TriMesh b = tri_sphere(30, 40, 0.7);
-  for (auto& p : b.positions) p.x() += 3;
-  append(t, b);
-  Case c = prepare(std::move(t));
+  Case c = prepare(sphere_beside_sphere(30, 40, 0.7, 3));
   const ReferenceSurface ref(c.tri);
   run_and_check(c, 300, ref);
   EXPECT_EQ(count_components(c.quads), 2u);
@@ -275,11 +271,7 @@ TEST(Simplify, a_small_component_takes_its_fewest_quads_and_the_large_one_the_re
   // its quads crumpled until every collapse there was refused (75 quads left), and the
   // target was met by taking the large sphere down to 8 quads (RMS 57e-3, 38% of the
   // output projectable). Each component's springs now rest at its own mean edge.
-  TriMesh t = tri_sphere(20, 40);
-  TriMesh b = tri_sphere(20, 40, 0.1);
-  for (auto& p : b.positions) p.x() += 1.5;
-  append(t, b);
-  Case c = prepare(std::move(t));
+  Case c = prepare(sphere_beside_sphere(20, 40, 0.1, 1.5));
   const ReferenceSurface ref(c.tri);
   run_and_check(c, 50, ref);
   ASSERT_EQ(count_components(c.quads), 2u);
