@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <set>
 
@@ -85,6 +87,40 @@ TEST(Clean, merges_copies_of_a_pole_a_rounding_error_apart) {
   EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) {
     return n.find("merged with a border vertex closer than 1e-6") != std::string::npos;
   }));
+}
+
+TEST(Clean, merges_pole_copies_that_exact_merging_folded_onto_each_other) {
+  // A UV sphere away from the origin, its south pole written once per segment: the
+  // copies differ by sin(phi) times a rounding error, and sin(pi - phi) == sin(phi), so
+  // exact merging joins them in mirror pairs. The zero-size hole between them folds
+  // onto itself, some copies lose every border edge, and merging only border vertices
+  // left the pole non-manifold: the file was refused.
+  const int rings = 20, segments = 40;
+  auto as_written = [](double x) {  // a text file's 9 significant digits
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", x);
+    return std::strtod(text, nullptr);
+  };
+  TriMesh t;
+  for (int i = 0; i <= rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const double theta = M_PI * i / rings, phi = 2 * M_PI * j / segments;
+      const Vec3 p = Vec3(0.8, 0, 0) + 0.7 * Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                                   std::cos(theta));
+      t.positions.push_back(Vec3(as_written(p.x()), as_written(p.y()), as_written(p.z())));
+    }
+  auto id = [&](int i, int j) { return Index(i * segments + (j % segments)); };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      t.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      t.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  const CleanReport r = clean(t);
+  EXPECT_GT(r.merged_duplicate_vertices, 0u);
+  EXPECT_GT(r.merged_close_vertices, 0u);
+  for (const auto& adj : triangle_adjacency(t))
+    for (Index g : adj) EXPECT_NE(g, kNone) << "a border is left at a pole";
+  EXPECT_EQ(t.n_vertices(), Index((rings - 1) * segments + 2));
 }
 
 TEST(Clean, closes_an_unwelded_seam_and_orients_across_it) {

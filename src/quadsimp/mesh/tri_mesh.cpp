@@ -132,9 +132,10 @@ std::pair<Vec3, Vec3> bbox(const std::vector<Vec3>& positions) {
 // hole of no size whose border the simplifier must keep (on a sphere: edges of length
 // 0 in the result, and with the border preserved a crumpled one). Border vertices closer
 // than a millionth of the diagonal, far below any sampled surface's spacing and above
-// float32 rounding, are merged into the lowest index. Only border vertices: two sheets
-// of a scan can touch closer than that (a 1.1M-triangle subdivided armadillo: 6 pairs),
-// and merging them would make the edges there non-manifold. `adj` as adjacency_from()
+// float32 rounding, are merged into the lowest index, with any vertex that close to one
+// of them. Not two interior vertices: two sheets of a scan can touch closer than that (a
+// 1.1M-triangle subdivided armadillo: 6 pairs), and merging them would make the edges
+// there non-manifold. `adj` as adjacency_from()
 // gives it; returns whether any vertex was merged.
 bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, CleanReport& r) {
   std::vector<Index> border;
@@ -163,34 +164,40 @@ bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index,
     for (auto it = first; it != last; ++it)
       if ((m.positions[v] - m.positions[it->second]).squaredNorm() <= eps * eps) sets.unite(v, it->second);
   };
-  for (auto run = sorted.begin(); run != sorted.end();) {
-    auto end = run;
-    while (end != sorted.end() && end->first == run->first) ++end;
-    for (auto at = run; at != end; ++at) {
-      const Index v = at->second;
-      merge_near(v, at + 1, end);
-      std::int64_t c[3];
-      int lo[3], hi[3];  // neighbour cells within eps along each axis
-      for (int i = 0; i < 3; ++i) {
-        c[i] = cell_of(v, i);
-        const double x = m.positions[v][i] - corner[i] - cell * double(c[i]);
-        lo[i] = x < eps && c[i] > 0 ? -1 : 0;
-        hi[i] = cell - x < eps ? 1 : 0;
-      }
-      for (int dx = lo[0]; dx <= hi[0]; ++dx)
-        for (int dy = lo[1]; dy <= hi[1]; ++dy)
-          for (int dz = lo[2]; dz <= hi[2]; ++dz) {
-            if (dx == 0 && dy == 0 && dz == 0) continue;
-            const std::pair<std::uint64_t, Index> k{key_of(c[0] + dx, c[1] + dy, c[2] + dz), 0};
-            const auto range = std::equal_range(sorted.begin(), sorted.end(), k,
-                                                [](const auto& a, const auto& b) { return a.first < b.first; });
-            merge_near(v, range.first, range.second);
-          }
+  // Calls fn(first, last) for the runs of `sorted` in v's cell and in each neighbour
+  // cell v lies within eps of.
+  const auto for_each_near_cell = [&](Index v, auto&& fn) {
+    std::int64_t c[3];
+    int lo[3], hi[3];
+    for (int i = 0; i < 3; ++i) {
+      c[i] = cell_of(v, i);
+      const double x = m.positions[v][i] - corner[i] - cell * double(c[i]);
+      lo[i] = x < eps && c[i] > 0 ? -1 : 0;
+      hi[i] = cell - x < eps ? 1 : 0;
     }
-    run = end;
-  }
+    for (int dx = lo[0]; dx <= hi[0]; ++dx)
+      for (int dy = lo[1]; dy <= hi[1]; ++dy)
+        for (int dz = lo[2]; dz <= hi[2]; ++dz) {
+          const std::pair<std::uint64_t, Index> k{key_of(c[0] + dx, c[1] + dy, c[2] + dz), 0};
+          const auto range = std::equal_range(sorted.begin(), sorted.end(), k,
+                                              [](const auto& a, const auto& b) { return a.first < b.first; });
+          fn(range.first, range.second);
+        }
+  };
+  for (const auto& [key, v] : sorted) for_each_near_cell(v, [&](auto first, auto last) { merge_near(v, first, last); });
+  // A copy that exact merging joined with its mirror image (sin(pi - x) == sin(x) on a
+  // pole written once per segment, away from the origin) can sit inside a fold of the
+  // zero-size hole, with no border edge: it is merged with the border copies it lies
+  // within eps of. Interior vertices near no border vertex stay apart (see above).
+  // 0: unreferenced (exact copies merged before), 1: referenced, 2: on the border.
+  std::vector<char> kind(m.n_vertices(), 0);
+  for (const auto& t : m.faces)
+    for (Index v : t) kind[v] = 1;
+  for (Index v : border) kind[v] = 2;
+  for (Index v = 0; v < m.n_vertices(); ++v)
+    if (kind[v] == 1) for_each_near_cell(v, [&](auto first, auto last) { merge_near(v, first, last); });
   Index merged = 0;
-  for (Index v : border) merged += sets.find(v) != v;
+  for (Index v = 0; v < m.n_vertices(); ++v) merged += kind[v] && sets.find(v) != v;
   if (!merged) return false;
   r.merged_close_vertices += merged;
   for (auto& t : m.faces)
@@ -425,7 +432,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
       if (n) log(src + ": " + std::to_string(n) + " " + what);
     };
     note(r.merged_duplicate_vertices, "duplicate vertices merged");
-    note(r.merged_close_vertices, "border vertices merged with a border vertex closer than 1e-6 of the bounding-box diagonal");
+    note(r.merged_close_vertices, "vertices merged with a border vertex closer than 1e-6 of the bounding-box diagonal");
     note(r.removed_degenerate_faces, "degenerate faces removed");
     note(r.removed_duplicate_faces, "duplicate faces removed");
     note(r.removed_unreferenced_vertices, "unreferenced vertices removed");
