@@ -135,8 +135,8 @@ std::pair<Vec3, Vec3> bbox(const std::vector<Vec3>& positions) {
 // float32 rounding, are merged into the lowest index, with any vertex that close to one
 // of them. Not two interior vertices: two sheets of a scan can touch closer than that (a
 // 1.1M-triangle subdivided armadillo: 6 pairs), and merging them would make the edges
-// there non-manifold. `adj` as adjacency_from()
-// gives it; returns whether any vertex was merged.
+// there non-manifold. `adj` as adjacency_from() gives it; returns whether any vertex
+// was merged.
 bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, CleanReport& r) {
   std::vector<Index> border;
   for (Index f = 0; f < m.n_faces(); ++f)
