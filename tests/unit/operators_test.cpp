@@ -149,8 +149,14 @@ TEST(EdgeRotation, both_directions_on_a_grid) {
     ASSERT_NE(h, kNone);
     ASSERT_TRUE(can_rotate_edge(m, h, r));
     const auto faces = rotated_faces(m, h, r);
+    const auto [a, b] = rotated_edge(m, h, r);
+    EXPECT_EQ(a, faces[0][0]);  // the new edge, as the new faces have it
+    EXPECT_EQ(b, faces[1][0]);
+    const int before_a = m.valence(a), before_b = m.valence(b);
     rotate_edge(m, h, r);
     validate(m);
+    EXPECT_EQ(m.valence(a), before_a + 1);
+    EXPECT_EQ(m.valence(b), before_b + 1);
     EXPECT_EQ(m.n_faces(), 9u);
     EXPECT_EQ(m.valence(5), 3);
     EXPECT_EQ(m.valence(6), 3);

@@ -39,6 +39,11 @@ std::array<std::array<Index, 4>, 2> rotated_faces(const QuadMesh& m, Index h, Ro
   return {{{x.x2, x.u, x.y1, x.y2}, {x.y2, x.w, x.x1, x.x2}}};
 }
 
+std::array<Index, 2> rotated_edge(const QuadMesh& m, Index h, Rotation r) {
+  const Hexagon x = hexagon(m, h);
+  return r == Rotation::Ccw ? std::array<Index, 2>{x.x1, x.y1} : std::array<Index, 2>{x.x2, x.y2};
+}
+
 bool can_rotate_edge(const QuadMesh& m, Index h, Rotation r) {
   if (h >= m.halfedge_capacity() || !m.is_face_live(QuadMesh::face(h)) || m.twin(h) == kNone) return false;
   const Hexagon x = hexagon(m, h);

@@ -23,6 +23,10 @@ namespace qs {
 //! u and w lose one edge each; the two new endpoints gain one.
 enum class Rotation { Ccw, Cw };
 
+//! The new edge's endpoints (x1, y1 for Ccw; x2, y2 for Cw): the two vertices that gain
+//! an edge. \pre h is interior.
+std::array<Index, 2> rotated_edge(const QuadMesh& mesh, Index h, Rotation r);
+
 //! Refused (false) when: h is on the border; the faces are the same; the six hexagon
 //! corners are not distinct; the new endpoints already share a face outside the
 //! pair (the edge would be doubled); two corners that become opposite in a new face

@@ -400,14 +400,10 @@ void Simplifier::add_faces_around(Index v, std::vector<Index>& faces) {
   m_.for_each_outgoing(v, [&](Index h) { faces.push_back(QuadMesh::face(h)); });
 }
 
-// The new edge's endpoints (see edge_rotation.h) gain one edge each: both must stay
-// within the valence cap.
+// The new edge's endpoints gain one edge each: both must stay within the valence cap.
 bool Simplifier::rotation_passes_cap(Index h, Rotation r) const {
   if (opt_.max_valence <= 0) return true;
-  const Index g = m_.twin(h);
-  const bool ccw = r == Rotation::Ccw;
-  const Index a = ccw ? m_.to(QuadMesh::next(h)) : m_.from(QuadMesh::prev(h));
-  const Index b = ccw ? m_.to(QuadMesh::next(g)) : m_.from(QuadMesh::prev(g));
+  const auto [a, b] = rotated_edge(m_, h, r);
   return std::max(m_.valence(a), m_.valence(b)) < opt_.max_valence;
 }
 
@@ -444,10 +440,8 @@ bool Simplifier::try_rotate(Index h) {
   for (int x : dev) keep.first += std::abs(x), keep.second += x * x;
   // A direction that would raise a vertex above the valence cap is never profitable.
   const std::pair<int, int> never{std::numeric_limits<int>::max(), 0};
-  auto capped = [&](Index p, Index q) {
-    return opt_.max_valence > 0 && std::max(m_.valence(p), m_.valence(q)) >= opt_.max_valence;
-  };
-  const auto e_a = capped(x1, y1) ? never : energy(1, 0), e_b = capped(x2, y2) ? never : energy(0, 1);
+  const auto e_a = rotation_passes_cap(h, Rotation::Ccw) ? energy(1, 0) : never;
+  const auto e_b = rotation_passes_cap(h, Rotation::Cw) ? energy(0, 1) : never;
   if (std::min(e_a, e_b) >= keep) return false;
   // Prefer the lower energy; on a tie the shorter new edge.
   Rotation first = Rotation::Ccw, second = Rotation::Cw;
