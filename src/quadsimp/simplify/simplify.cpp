@@ -46,7 +46,7 @@ struct LaterFirst {  // makes std::*_heap a min-heap, ties broken by ids
 class Simplifier {
  public:
   Simplifier(QuadMesh& m, const ReferenceSurface& ref, const SimplifyOptions& opt)
-      : m_(m), ref_(ref), opt_(opt) {}
+      : m_(m), ref_(ref), opt_(opt), refuse_folds_(opt.refuse_folds) {}
 
   SimplifyReport run();
 
@@ -60,6 +60,12 @@ class Simplifier {
   bool exceeds_valence(Index f, Index k) const {
     return opt_.max_valence > 0 &&
            m_.valence(m_.vertex(f, k)) + m_.valence(m_.vertex(f, k + 2)) - 2 > opt_.max_valence;
+  }
+  // The border ear f with b at corner k merges its neighbours a and c into one vertex of
+  // val(a) + val(c) - 3 edges (border_ear.h).
+  bool ear_exceeds_valence(Index f, Index k) const {
+    return opt_.max_valence > 0 &&
+           m_.valence(m_.vertex(f, k + 3)) + m_.valence(m_.vertex(f, k + 1)) - 3 > opt_.max_valence;
   }
   bool m_fitmap_allows(Index f, Index k, const Vec3& pos) const;
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
@@ -147,7 +153,7 @@ class Simplifier {
   // upper bound that spares the recount while it stays under the halting share.
   double blocked_bound_ = 0;
   double area_ = 0;  // of the mesh at the start
-  bool refuse_folds_ = false;  // opt_.refuse_folds, and on during unfold()
+  bool refuse_folds_;  // opt_.refuse_folds, and on during unfold(): what every fold check reads
 };
 
 // Where a spring of length `rest` from q would put p: on the sphere of that radius
@@ -451,7 +457,7 @@ bool Simplifier::try_rotate(Index h) {
   const auto e_second = second == Rotation::Ccw ? e_a : e_b;
   for (Rotation r : {first, second}) {
     if (r == second && e_second >= keep) break;
-    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r, kNone, opt_.refuse_folds) ||
+    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r, kNone, refuse_folds_) ||
         !rotation_follows_reference(h, r))
       continue;
     const Index f1 = QuadMesh::face(h), f2 = QuadMesh::face(g);
@@ -664,11 +670,9 @@ bool Simplifier::remove_border_vertex(Index b) {
   const Vec3 keep = m_.position(corner_a ? a : corner_c ? c : b);
   // The ear is f with b at corner k, once b has a single face.
   auto try_ear = [&](Index ear, Index k) {
-    // The merged vertex has val(a) + val(c) - 3 edges (border_ear.h). Unchecked, a
-    // corner that kept its place took in its border neighbours one after another: the
-    // corner of a grid of 200 x 4 skinny cells ended with valence 14.
-    const int merged = m_.valence(m_.vertex(ear, k + 3)) + m_.valence(m_.vertex(ear, k + 1)) - 3;
-    if (opt_.max_valence > 0 && merged > opt_.max_valence) return false;
+    // Unchecked, a corner that kept its place took in its border neighbours one after
+    // another: the corner of a grid of 200 x 4 skinny cells ended with valence 14.
+    if (ear_exceeds_valence(ear, k)) return false;
     const SurfacePoint foot = ref_.closest(keep);
     if (!can_collapse_border_ear(m_, ear, k) || !foot.found() ||
         !for_each_face_after_collapse(m_, ear, (k + 1) & 3u, keep,
@@ -695,7 +699,7 @@ bool Simplifier::remove_border_vertex(Index b) {
   // or turns outwards (the ear's angle at b is then 180 degrees or more): on bunny.ply
   // at 11K, border edges of 0.44 mu stayed along a hole's staircase border.
   for (Rotation r : {Rotation::Ccw, Rotation::Cw}) {
-    if (!rotation_passes_cap(h, r) || !can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r, b, opt_.refuse_folds) ||
+    if (!rotation_passes_cap(h, r) || !can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r, b, refuse_folds_) ||
         !rotation_follows_reference(h, r, b))
       continue;
     rotate_edge(m_, h, r);
@@ -765,7 +769,6 @@ bool Simplifier::unfold_face(Index f) {
   if (best_h == kNone) return relocate_corner(f);
   const Index g = QuadMesh::face(m_.twin(best_h));
   rotate_edge(m_, best_h, best_r);
-  ++version_[f], ++version_[g];
   region_faces_.clear();
   for (Index x : {f, g})
     for (Index k = 0; k < 4; ++k) add_faces_around(m_.vertex(x, k), region_faces_);
@@ -831,7 +834,6 @@ void Simplifier::unfold() {
 }
 
 SimplifyReport Simplifier::run() {
-  refuse_folds_ = opt_.refuse_folds;
   const auto t0 = std::chrono::steady_clock::now();
   if (opt_.adaptive && (!opt_.fitmaps || opt_.fitmaps->s.size() != ref_.mesh().n_vertices() ||
                         opt_.fitmaps->m.size() != ref_.mesh().n_vertices()))
