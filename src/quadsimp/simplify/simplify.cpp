@@ -164,6 +164,19 @@ Vec3 spring_point(const Vec3& p, const Vec3& q, double rest) {
   return l > 1e-30 ? Vec3(q + rest * d / l) : p;
 }
 
+// Calls fn(f, length) once for each edge of the mesh, f one of its faces, in face order.
+template <class Fn>
+void for_each_edge_length(const QuadMesh& m, Fn&& fn) {
+  for (Index f = 0; f < m.face_capacity(); ++f) {
+    if (!m.is_face_live(f)) continue;
+    for (Index k = 0; k < 4; ++k) {
+      const Index h = QuadMesh::halfedge(f, k), t = m.twin(h);
+      if (t != kNone && t < h) continue;  // each edge once
+      fn(f, (m.position(m.vertex(f, k)) - m.position(m.vertex(f, k + 1))).norm());
+    }
+  }
+}
+
 double norm_of_diagonal(const QuadMesh& m, Index f, Index k) {
   return (m.position(m.vertex(f, k)) - m.position(m.vertex(f, k + 2))).norm();
 }
@@ -355,27 +368,24 @@ void Simplifier::label_components() {
 }
 
 void Simplifier::update_mu() {
-  // As mean_edge_length(), summed per component too (in the same order: one component
-  // gives exactly the mesh's mean).
-  std::vector<double>& length = component_mu_;
-  std::fill(length.begin(), length.end(), 0.0);
-  edge_count_.assign(length.size(), 0);
-  double total = 0;
-  std::size_t edges = 0;
-  for (Index f = 0; f < m_.face_capacity(); ++f) {
-    if (!m_.is_face_live(f)) continue;
-    const Index c = component_[m_.vertex(f, 0)];
-    for (Index k = 0; k < 4; ++k) {
-      const Index h = QuadMesh::halfedge(f, k), t = m_.twin(h);
-      if (t != kNone && t < h) continue;  // each edge once
-      const double len = (m_.position(m_.vertex(f, k)) - m_.position(m_.vertex(f, k + 1))).norm();
+  if (component_mu_.size() == 1) {
+    mu_ = component_mu_[0] = mean_edge_length(m_);
+  } else {
+    // The same sums per component (in the same order, so mu_ is mean_edge_length()).
+    std::vector<double>& length = component_mu_;
+    std::fill(length.begin(), length.end(), 0.0);
+    edge_count_.assign(length.size(), 0);
+    double total = 0;
+    std::size_t edges = 0;
+    for_each_edge_length(m_, [&](Index f, double len) {
+      const Index c = component_[m_.vertex(f, 0)];
       length[c] += len, ++edge_count_[c];
       total += len, ++edges;
-    }
+    });
+    mu_ = edges ? total / double(edges) : 0.0;
+    for (std::size_t c = 0; c < length.size(); ++c)
+      length[c] = edge_count_[c] ? length[c] / double(edge_count_[c]) : mu_;
   }
-  mu_ = edges ? total / double(edges) : 0.0;
-  for (std::size_t c = 0; c < length.size(); ++c)
-    length[c] = edge_count_[c] ? length[c] / double(edge_count_[c]) : mu_;
   if (!opt_.adaptive) return;
   double sum = 0;
   Index n = 0;
@@ -949,15 +959,7 @@ SimplifyReport Simplifier::run() {
 double mean_edge_length(const QuadMesh& m) {
   double sum = 0;
   std::size_t n = 0;
-  for (Index f = 0; f < m.face_capacity(); ++f) {
-    if (!m.is_face_live(f)) continue;
-    for (Index k = 0; k < 4; ++k) {
-      const Index h = QuadMesh::halfedge(f, k), t = m.twin(h);
-      if (t != kNone && t < h) continue;  // each edge once
-      sum += (m.position(m.vertex(f, k)) - m.position(m.vertex(f, k + 1))).norm();
-      ++n;
-    }
-  }
+  for_each_edge_length(m, [&](Index, double length) { sum += length, ++n; });
   return n ? sum / double(n) : 0.0;
 }
 
