@@ -174,3 +174,25 @@ TEST(QuadMesh, kill_and_compact) {
   EXPECT_EQ(vmap[4], 3u);
   EXPECT_EQ(m.face_capacity(), 2u);
 }
+
+TEST(QuadMesh, connected_components_label_each_part_apart) {
+  // Two 2 x 2 grids side by side.
+  std::vector<Vec3> p;
+  std::vector<std::array<Index, 4>> quads;
+  for (int part = 0; part < 2; ++part) {
+    const Index base = Index(p.size());
+    for (int j = 0; j <= 2; ++j)
+      for (int i = 0; i <= 2; ++i) p.emplace_back(3.0 * part + i, j, 0);
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const Index a = base + Index(j * 3 + i);
+        quads.push_back({a, a + 1, a + 4, a + 3});
+      }
+  }
+  QuadMesh m = QuadMesh::from_faces(p, quads);
+  std::vector<Index> component;
+  ASSERT_EQ(connected_components(m, component), 2u);
+  ASSERT_EQ(component.size(), m.vertex_capacity());
+  for (Index v = 0; v < 9; ++v) EXPECT_EQ(component[v], 0u);
+  for (Index v = 9; v < 18; ++v) EXPECT_EQ(component[v], 1u);
+}

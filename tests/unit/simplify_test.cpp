@@ -32,27 +32,8 @@ Case prepare(TriMesh t) {
 }
 
 Index count_components(const QuadMesh& m) {
-  std::vector<Index> comp(m.face_capacity(), kNone);
-  Index n = 0;
-  std::vector<Index> stack;
-  for (Index f = 0; f < m.face_capacity(); ++f) {
-    if (!m.is_face_live(f) || comp[f] != kNone) continue;
-    comp[f] = n;
-    stack = {f};
-    while (!stack.empty()) {
-      const Index g = stack.back();
-      stack.pop_back();
-      for (Index k = 0; k < 4; ++k) {
-        const Index t = m.twin(QuadMesh::halfedge(g, k));
-        if (t != kNone && comp[QuadMesh::face(t)] == kNone) {
-          comp[QuadMesh::face(t)] = n;
-          stack.push_back(QuadMesh::face(t));
-        }
-      }
-    }
-    ++n;
-  }
-  return n;
+  std::vector<Index> component;
+  return connected_components(m, component);
 }
 
 // Distance from p to the nearest vertex of m.

@@ -271,4 +271,27 @@ Index count_shared_diagonals(const QuadMesh& m) {
   return n;
 }
 
+Index connected_components(const QuadMesh& m, std::vector<Index>& component) {
+  component.assign(m.vertex_capacity(), kNone);
+  std::vector<Index> stack;
+  Index n = 0;
+  for (Index seed = 0; seed < m.vertex_capacity(); ++seed) {
+    if (!m.is_vertex_live(seed) || component[seed] != kNone) continue;
+    component[seed] = n;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const Index v = stack.back();
+      stack.pop_back();
+      m.for_each_outgoing(v, [&](Index h) {
+        for (Index k = 0; k < 4; ++k) {
+          const Index w = m.vertex(QuadMesh::face(h), k);
+          if (component[w] == kNone) component[w] = n, stack.push_back(w);
+        }
+      });
+    }
+    ++n;
+  }
+  return n;
+}
+
 }  // namespace qs

@@ -148,4 +148,8 @@ bool share_a_face(const QuadMesh& mesh, Index p, Index q, Index skip_a = kNone, 
 //! triangles. validate() accepts them, but the operators never make one: 0 expected.
 Index count_shared_diagonals(const QuadMesh& mesh);
 
+//! Labels every live vertex with its connected component (through faces), in order of
+//! their lowest vertex id; dead vertices get kNone. Returns the number of components.
+Index connected_components(const QuadMesh& mesh, std::vector<Index>& vertex_component);
+
 }  // namespace qs

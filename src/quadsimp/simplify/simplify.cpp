@@ -108,10 +108,13 @@ class Simplifier {
     foot_face_[v] = s.face;
     if (opt_.adaptive) size_[v] = target_size(ref_.interpolate(opt_.fitmaps->s, s));
   }
-  void label_components();
   void update_mu();
   // The mean edge of v's connected component: what its springs and the thresholds
-  // scaled by the edge length use (see label_components()).
+  // scaled by the edge length use. With one mu for all, a part too small to hold quads
+  // of the mesh's size (a sphere a tenth the size of another, beside it) had springs
+  // longer than itself: its quads crumpled (edges from 0.02 to 8 mu), every collapse
+  // there was refused at 75 quads, and the target was reached by taking the large
+  // sphere down to 8. No operator joins or splits components, so the labels hold.
   double mu_at(Index v) const { return component_mu_[component_[v]]; }
   // Spring rest length between u and v, for an edge (diagonals: times sqrt(2)).
   double rest_length(Index u, Index v) const {
@@ -338,33 +341,6 @@ bool Simplifier::m_fitmap_allows(Index f, Index k, const Vec3& pos) const {
     const double fm = sample_fitmap(opt_.fitmaps->m, centre, quad_normal(q[0], q[1], q[2], q[3]));
     return radius * opt_.m_factor <= fm;
   });
-}
-
-// Components keep their own mean edge. With one mu for all, a part too small to hold
-// quads of the mesh's size (a sphere a tenth the size of another, beside it) had
-// springs longer than itself: its quads crumpled (edges from 0.02 to 8 mu), every
-// collapse there was refused at 75 quads, and the target was reached by taking the
-// large sphere down to 8. No operator joins or splits components, so the labels hold.
-void Simplifier::label_components() {
-  component_.assign(m_.vertex_capacity(), kNone);
-  Index n = 0;
-  for (Index seed = 0; seed < m_.vertex_capacity(); ++seed) {
-    if (!m_.is_vertex_live(seed) || component_[seed] != kNone) continue;
-    component_[seed] = n;
-    work_.assign(1, seed);
-    while (!work_.empty()) {
-      const Index v = work_.back();
-      work_.pop_back();
-      m_.for_each_outgoing(v, [&](Index h) {
-        for (Index k = 0; k < 4; ++k) {
-          const Index w = m_.vertex(QuadMesh::face(h), k);
-          if (component_[w] == kNone) component_[w] = n, work_.push_back(w);
-        }
-      });
-    }
-    ++n;
-  }
-  component_mu_.assign(n, 0.0);
 }
 
 void Simplifier::update_mu() {
@@ -874,7 +850,7 @@ SimplifyReport Simplifier::run() {
     }
   for (Index v = 0; v < m_.vertex_capacity() && !has_border_; ++v)
     has_border_ = m_.is_vertex_live(v) && m_.is_border_vertex(v);
-  label_components();
+  component_mu_.assign(connected_components(m_, component_), 0.0);
   update_mu();
   if (opt_.initial_sweeps > 0) {
     region_faces_.clear();
