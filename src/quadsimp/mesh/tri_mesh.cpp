@@ -138,16 +138,18 @@ std::pair<Vec3, Vec3> bbox(const std::vector<Vec3>& positions) {
 // there non-manifold. `adj` as adjacency_from() gives it; returns whether any vertex
 // was merged.
 bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, CleanReport& r) {
-  std::vector<Index> border;
+  // 0: unreferenced (exact copies merged before), 1: referenced, 2: on the border.
+  std::vector<char> kind(m.n_vertices(), 0);
+  for (const auto& t : m.faces)
+    for (Index v : t) kind[v] = 1;
+  bool any_border = false;
   for (Index f = 0; f < m.n_faces(); ++f)
     for (Index k = 0; k < 3; ++k)
-      if (adj[f][k] == kNone) border.push_back(m.faces[f][k]), border.push_back(m.faces[f][(k + 1) % 3]);
-  if (border.empty()) return false;
-  std::sort(border.begin(), border.end());
-  border.erase(std::unique(border.begin(), border.end()), border.end());
+      if (adj[f][k] == kNone) kind[m.faces[f][k]] = kind[m.faces[f][(k + 1) % 3]] = 2, any_border = true;
+  if (!any_border) return false;
   // Cells of 1024 eps, 21 bits per axis from the box's corner (the box spans 1000):
-  // a vertex is compared with the others in its cell, and with a neighbour cell's only
-  // when within eps of it.
+  // a vertex is compared with the border vertices in its cell, and with a neighbour
+  // cell's only when within eps of it.
   const auto box = bbox(m.positions);
   const Vec3 corner = box.first;  // a lambda below captures it: not a structured binding
   const double eps = 1e-6 * (box.second - box.first).norm(), cell = 1024 * eps;
@@ -157,18 +159,19 @@ bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index,
     return std::uint64_t(x) << 42 | std::uint64_t(y) << 21 | std::uint64_t(z);
   };
   std::vector<std::pair<std::uint64_t, Index>> sorted;
-  for (Index v : border) sorted.push_back({key_of(cell_of(v, 0), cell_of(v, 1), cell_of(v, 2)), v});
+  for (Index v = 0; v < m.n_vertices(); ++v)
+    if (kind[v] == 2) sorted.push_back({key_of(cell_of(v, 0), cell_of(v, 1), cell_of(v, 2)), v});
   std::sort(sorted.begin(), sorted.end());
   UnionFind sets(m.n_vertices());
-  const auto merge_near = [&](Index v, auto first, auto last) {
-    for (auto it = first; it != last; ++it)
-      if ((m.positions[v] - m.positions[it->second]).squaredNorm() <= eps * eps) sets.unite(v, it->second);
-  };
-  // Calls fn(first, last) for the runs of `sorted` in v's cell and in each neighbour
-  // cell v lies within eps of.
-  const auto for_each_near_cell = [&](Index v, auto&& fn) {
+  // Every referenced vertex joins the border vertices within eps of it: border copies
+  // with each other, and a copy that exact merging joined with its mirror image
+  // (sin(pi - x) == sin(x) on a pole written once per segment, away from the origin),
+  // which can sit inside a fold of the zero-size hole with no border edge of its own.
+  // Interior vertices near no border vertex stay apart (see above).
+  for (Index v = 0; v < m.n_vertices(); ++v) {
+    if (!kind[v]) continue;
     std::int64_t c[3];
-    int lo[3], hi[3];
+    int lo[3], hi[3];  // neighbour cells within eps along each axis
     for (int i = 0; i < 3; ++i) {
       c[i] = cell_of(v, i);
       const double x = m.positions[v][i] - corner[i] - cell * double(c[i]);
@@ -179,23 +182,12 @@ bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index,
       for (int dy = lo[1]; dy <= hi[1]; ++dy)
         for (int dz = lo[2]; dz <= hi[2]; ++dz) {
           const std::pair<std::uint64_t, Index> k{key_of(c[0] + dx, c[1] + dy, c[2] + dz), 0};
-          const auto range = std::equal_range(sorted.begin(), sorted.end(), k,
-                                              [](const auto& a, const auto& b) { return a.first < b.first; });
-          fn(range.first, range.second);
+          const auto [first, last] = std::equal_range(sorted.begin(), sorted.end(), k,
+                                                      [](const auto& a, const auto& b) { return a.first < b.first; });
+          for (auto it = first; it != last; ++it)
+            if ((m.positions[v] - m.positions[it->second]).squaredNorm() <= eps * eps) sets.unite(v, it->second);
         }
-  };
-  for (const auto& [key, v] : sorted) for_each_near_cell(v, [&](auto first, auto last) { merge_near(v, first, last); });
-  // A copy that exact merging joined with its mirror image (sin(pi - x) == sin(x) on a
-  // pole written once per segment, away from the origin) can sit inside a fold of the
-  // zero-size hole, with no border edge: it is merged with the border copies it lies
-  // within eps of. Interior vertices near no border vertex stay apart (see above).
-  // 0: unreferenced (exact copies merged before), 1: referenced, 2: on the border.
-  std::vector<char> kind(m.n_vertices(), 0);
-  for (const auto& t : m.faces)
-    for (Index v : t) kind[v] = 1;
-  for (Index v : border) kind[v] = 2;
-  for (Index v = 0; v < m.n_vertices(); ++v)
-    if (kind[v] == 1) for_each_near_cell(v, [&](auto first, auto last) { merge_near(v, first, last); });
+  }
   Index merged = 0;
   for (Index v = 0; v < m.n_vertices(); ++v) merged += kind[v] && sets.find(v) != v;
   if (!merged) return false;
