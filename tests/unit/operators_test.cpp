@@ -9,6 +9,7 @@
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/convert/tri_to_quad.h"
 #include "quadsimp/ops/border_ear.h"
+#include "quadsimp/ops/chord_collapse.h"
 #include "quadsimp/ops/cleaning.h"
 #include "quadsimp/ops/diagonal_collapse.h"
 #include "quadsimp/ops/doublet.h"
@@ -379,6 +380,152 @@ TEST(BorderEar, refusals) {
     for (Index k = 0; k < 4; ++k) EXPECT_FALSE(can_collapse_border_ear(strip, ff, k));
   g.kill_face(f);
   EXPECT_FALSE(can_collapse_border_ear(g, f, 0));
+}
+
+namespace {
+
+std::vector<Vec3> chord_midpoints(const QuadMesh& m, const Chord& c) {
+  std::vector<Vec3> p;
+  for (Index i = 0; i < c.pairs(); ++i) p.push_back(0.5 * (m.position(c.left[i]) + m.position(c.right[i])));
+  return p;
+}
+
+// Gathers the chord through a -> b (or b -> a) and collapses it if allowed.
+bool collapse_chord_through(QuadMesh& m, Index a, Index b, Chord* out = nullptr) {
+  Index h = halfedge_between(m, a, b);
+  if (h == kNone) h = halfedge_between(m, b, a);
+  Chord c;
+  if (h == kNone || !gather_chord(m, h, c, 64) || !can_collapse_chord(m, c)) return false;
+  collapse_chord(m, c, chord_midpoints(m, c));
+  if (out) *out = c;
+  return true;
+}
+
+}  // namespace
+
+// Tube of 4 x 6 quads: vertex (i, j) is 4 j + i, ring j at z = j.
+TEST(ChordCollapse, ring_comes_out_of_a_tube) {
+  QuadMesh m = quad_tube(4, 6);
+  Chord c;
+  ASSERT_TRUE(gather_chord(m, halfedge_between(m, 8, 12), c, 64));
+  EXPECT_TRUE(c.closed);
+  EXPECT_EQ(c.faces.size(), 4u);
+  EXPECT_EQ(c.pairs(), 4u);
+  for (Index i = 0; i < c.pairs(); ++i)  // each crossed edge joins ring 2 to ring 3
+    EXPECT_EQ(std::abs(int(c.left[i] / 4) - int(c.right[i] / 4)), 1);
+  ASSERT_TRUE(can_collapse_chord(m, c));
+  collapse_chord(m, c, chord_midpoints(m, c));
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 20u);
+  EXPECT_EQ(m.n_vertices(), 24u);
+  EXPECT_EQ(count_shared_diagonals(m), 0u);
+  for (Index v : c.left) {
+    EXPECT_EQ(m.valence(v), 4);
+    EXPECT_NEAR(m.position(v).z(), 2.5, 1e-12);
+  }
+  // The chord along the tube is open (border to border): it takes one quad out of
+  // every ring, 4 around -> 3; a second one would leave quads sharing two edges.
+  ASSERT_TRUE(collapse_chord_through(m, 0, 1, &c));
+  EXPECT_FALSE(c.closed);
+  EXPECT_EQ(c.faces.size(), 5u);
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 15u);
+  EXPECT_EQ(count_shared_diagonals(m), 0u);
+  const Index left = c.left[0];
+  Index other = kNone;
+  m.for_each_outgoing(left, [&](Index h) {
+    if (m.twin(h) == kNone) other = m.to(h);
+  });
+  QuadMesh before = m;
+  EXPECT_FALSE(collapse_chord_through(m, left, other));
+  EXPECT_EQ(m.n_faces(), before.n_faces());
+}
+
+// 5 x 1 strip: bottom row 0..5, top row 6..11.
+TEST(ChordCollapse, strip_loses_one_quad_across_not_along) {
+  QuadMesh m = quad_grid(5, 1);
+  Chord along;
+  ASSERT_TRUE(gather_chord(m, halfedge_between(m, 3, 9), along, 64));
+  EXPECT_EQ(along.faces.size(), 5u);
+  EXPECT_FALSE(can_collapse_chord(m, along)) << "every rung joins two border vertices: a pinch";
+  Chord across;
+  ASSERT_TRUE(collapse_chord_through(m, 2, 3, &across));
+  EXPECT_EQ(across.faces.size(), 1u);
+  EXPECT_EQ(across.pairs(), 2u);
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 4u);
+  EXPECT_EQ(m.n_vertices(), 10u);
+  EXPECT_TRUE(m.is_border_vertex(2));
+  EXPECT_EQ(m.valence(2), 3);
+}
+
+TEST(ChordCollapse, grid_column_and_refusals) {
+  QuadMesh g = quad_grid(3, 3);
+  Chord c;
+  ASSERT_TRUE(collapse_chord_through(g, 1, 2, &c));
+  EXPECT_EQ(c.faces.size(), 3u);
+  EXPECT_EQ(c.pairs(), 4u);
+  validate(g);
+  EXPECT_EQ(g.n_faces(), 6u);
+  EXPECT_EQ(g.n_vertices(), 12u);
+  EXPECT_EQ(count_shared_diagonals(g), 0u);
+
+  // 3 x 3 minus its centre: the chord through the bottom row crosses two edges from the
+  // outer border to the hole's; merging their ends would join the two borders into one
+  // (the ring would become a disc, a valid mesh of another topology).
+  QuadMesh ring = grid_with_hole(3);
+  EXPECT_FALSE(collapse_chord_through(ring, 1, 5));
+  EXPECT_TRUE(collapse_chord_through(ring, 1, 2));  // one quad out of the ring
+  validate(ring);
+  QuadMesh one = single_quad();  // nothing would be left
+  EXPECT_FALSE(collapse_chord_through(one, 0, 1));
+  QuadMesh box = cube();  // the two faces left would share all four corners
+  EXPECT_FALSE(collapse_chord_through(box, 0, 4));
+  QuadMesh torus = quad_tube(4, 3, true);  // 4 x 2 would have quads sharing two edges
+  EXPECT_FALSE(collapse_chord_through(torus, 0, 4));
+  QuadMesh bigger = quad_tube(4, 4, true);
+  EXPECT_TRUE(collapse_chord_through(bigger, 0, 4));
+  validate(bigger);
+  EXPECT_EQ(bigger.n_faces(), 12u);
+  Chord longer;  // gathering stops past max_faces
+  EXPECT_FALSE(gather_chord(bigger, halfedge_between(bigger, 0, 1), longer, 2));
+}
+
+// Every chord of several meshes, each collapsed on a copy where allowed: the result
+// must pass validate() and have no shared diagonal.
+TEST(ChordCollapse, every_allowed_chord_keeps_every_invariant) {
+  std::vector<QuadMesh> meshes;
+  for (TriMesh t : {tri_sphere(8, 10), tri_torus(12, 8), tri_grid(6, 5, 0.3), two_spheres()}) {
+    clean(t);
+    meshes.push_back(tri_to_quad(t));
+  }
+  meshes.push_back(quad_grid(4, 3));
+  meshes.push_back(grid_with_hole(5));
+  meshes.push_back(grid_with_hole(3));
+  meshes.push_back(quad_tube(5, 4));
+  meshes.push_back(quad_tube(6, 5, true));
+  int collapsed = 0, refused = 0;
+  for (QuadMesh& m : meshes) {
+    CleanCounts counts = clean_all(m);
+    (void)counts;
+    for (Index h = 0; h < m.halfedge_capacity(); ++h) {
+      Chord c;
+      if (!gather_chord(m, h, c, 1000)) continue;
+      if (!can_collapse_chord(m, c)) {
+        ++refused;
+        continue;
+      }
+      QuadMesh copy = m;
+      collapse_chord(copy, c, chord_midpoints(m, c));
+      ASSERT_NO_THROW(validate(copy)) << "chord of " << c.faces.size() << " faces from half-edge " << h;
+      EXPECT_EQ(count_shared_diagonals(copy), 0u);
+      EXPECT_EQ(copy.n_faces() + c.faces.size(), m.n_faces());
+      EXPECT_EQ(copy.n_vertices() + c.pairs(), m.n_vertices());
+      ++collapsed;
+    }
+  }
+  EXPECT_GT(collapsed, 100);
+  EXPECT_GT(refused, 100);
 }
 
 TEST(Operators, random_sequences_keep_every_invariant) {
