@@ -136,15 +136,19 @@ int run_simplify(const SimplifyArgs& a) {
       const QuadQuality full = quad_quality(in.quads, &ref);
       if (a.json) {
         std::string j = to_json(full, &d);
-        char extra[512];
-        std::snprintf(extra, sizeof extra,
-                      ", \"seconds\": %.4f, \"collapses\": %u, \"border_collapses\": %u, \"rotations\": %u, \"unfolds\": %u, \"input_faces\": %u, "
-                      "\"refused\": {\"topology\": %u, \"valence\": %u, \"geometry\": %u, \"fitmap\": %u}, "
-                      "\"blocked_share\": %.4f}",
-                      s, r.collapses, r.border_collapses, r.rotations, r.unfolds, r.initial_faces, r.refused_topology, r.refused_valence,
-                      r.refused_geometry, r.refused_fitmap, r.blocked_share);
+        const auto n = [](Index x) { return std::to_string(x); };
+        char share[32], seconds[32];
+        std::snprintf(share, sizeof share, "%.4f", r.blocked_share);
+        std::snprintf(seconds, sizeof seconds, "%.4f", s);
+        const std::string extra = std::string(", \"seconds\": ") + seconds + ", \"collapses\": " + n(r.collapses) +
+                                  ", \"border_collapses\": " + n(r.border_collapses) +
+                                  ", \"chord_collapses\": " + n(r.chord_collapses) + ", \"rotations\": " + n(r.rotations) +
+                                  ", \"unfolds\": " + n(r.unfolds) + ", \"input_faces\": " + n(r.initial_faces) +
+                                  ", \"refused\": {\"topology\": " + n(r.refused_topology) +
+                                  ", \"valence\": " + n(r.refused_valence) + ", \"geometry\": " + n(r.refused_geometry) +
+                                  ", \"fitmap\": " + n(r.refused_fitmap) + "}, \"blocked_share\": " + share + "}";
         j.pop_back();
-        std::printf("%s%s\n", j.c_str(), extra);
+        std::printf("%s%s\n", j.c_str(), extra.c_str());
         return kOk;
       }
       print_summary(a, q, s, r);

@@ -546,6 +546,33 @@ TEST(ReferenceSurface, closest_on_border_stays_on_the_border) {
   EXPECT_FALSE(ref.closest_on_border(inner, Vec3(0.5, 0.5, 0.3), 0.2).found());
 }
 
+TEST(Simplify, a_strip_one_quad_wide_shortens_by_chord_collapses) {
+  // 60 square quads in a row, bent: no diagonal collapse can thin it without a pinch.
+  TriMesh t = tri_grid(60, 1);
+  for (Vec3& p : t.positions) p = Vec3(p.x(), p.y() / 60, 0.2 * std::sin(M_PI * p.x()));
+  Case c = prepare(t);
+  ASSERT_EQ(c.quads.n_faces(), 60u);
+  const ReferenceSurface ref(c.tri);
+  const SimplifyReport r = run_and_check(c, 15, ref);
+  EXPECT_GT(r.chord_collapses, 0u);
+  EXPECT_EQ(count_components(c.quads), 1u);
+  // The quads grew evenly along the strip (across it they keep its width).
+  for (Index f = 0; f < c.quads.n_faces(); ++f) {
+    double lo = 1, hi = 0;
+    for (Index k = 0; k < 4; ++k) lo = std::min(lo, c.quads.position(c.quads.vertex(f, k)).x()),
+                                   hi = std::max(hi, c.quads.position(c.quads.vertex(f, k)).x());
+    const double share = (hi - lo) * double(c.quads.n_faces());
+    EXPECT_GT(share, 0.5);
+    EXPECT_LT(share, 2.0);
+  }
+
+  Case without = prepare(t);
+  SimplifyOptions opt;
+  opt.target_faces = 15;
+  opt.chord_collapses = false;
+  EXPECT_GT(simplify(without.quads, ref, opt).faces, 50u);
+}
+
 TEST(Metrics, regular_grid_and_cube) {
   const QuadQuality g = quad_quality(quad_grid(6, 5));
   EXPECT_DOUBLE_EQ(g.regular_percent, 100.0 * (42 - 4) / 42);  // only the 4 corners are irregular

@@ -11,6 +11,7 @@
 
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/ops/border_ear.h"
+#include "quadsimp/ops/chord_collapse.h"
 #include "quadsimp/ops/cleaning.h"
 #include "quadsimp/ops/diagonal_collapse.h"
 #include "quadsimp/ops/edge_rotation.h"
@@ -68,10 +69,14 @@ class Simplifier {
            m_.valence(m_.vertex(f, k + 3)) + m_.valence(m_.vertex(f, k + 1)) - 3 > opt_.max_valence;
   }
   bool m_fitmap_allows(Index f, Index k, const Vec3& pos) const;
+  bool within_m_fitmap(const Vec3* q) const;
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
   void coarsen_border();
   bool remove_border_vertex(Index b);
-  void after_change(std::initializer_list<Index> touched);
+  void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
+  void after_change(const Index* first, const Index* last);
+  bool collapse_chords();
+  bool try_collapse_chord(const Chord& chord);
   void add_faces_around(Index v, std::vector<Index>& faces);
   void rotate_in_region();
   bool try_rotate(Index h);
@@ -142,6 +147,10 @@ class Simplifier {
   std::uint32_t stamp_ = 0;
   std::vector<Entry> heap_;
   std::vector<Index> region_faces_, region_verts_, work_, cand_, border_verts_;
+  Chord chord_;
+  std::vector<Index> beside_;
+  std::vector<Vec3> chord_pos_;
+  std::vector<SurfacePoint> chord_feet_;
   std::vector<std::size_t> edge_count_;  // per component, for update_mu()
   bool has_border_ = false;  // no operator makes a border where there was none
   // Faces the M-fitmap refused to enlarge, with their version and area then: while a
@@ -334,13 +343,16 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
 // corner distance) above F_M at its centre. The faces are those around a and c
 // after the merge, with the survivor at `pos`.
 bool Simplifier::m_fitmap_allows(Index f, Index k, const Vec3& pos) const {
-  return for_each_face_after_collapse(m_, f, k, pos, [&](Index, const Vec3* q) {
-    const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
-    double radius = 0;
-    for (int i = 0; i < 4; ++i) radius = std::max(radius, (q[i] - centre).norm());
-    const double fm = sample_fitmap(opt_.fitmaps->m, centre, quad_normal(q[0], q[1], q[2], q[3]));
-    return radius * opt_.m_factor <= fm;
-  });
+  return for_each_face_after_collapse(m_, f, k, pos, [&](Index, const Vec3* q) { return within_m_fitmap(q); });
+}
+
+// Whether a face with corners q has a radius within F_M at its centre.
+bool Simplifier::within_m_fitmap(const Vec3* q) const {
+  const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+  double radius = 0;
+  for (int i = 0; i < 4; ++i) radius = std::max(radius, (q[i] - centre).norm());
+  const double fm = sample_fitmap(opt_.fitmaps->m, centre, quad_normal(q[0], q[1], q[2], q[3]));
+  return radius * opt_.m_factor <= fm;
 }
 
 void Simplifier::update_mu() {
@@ -701,14 +713,14 @@ bool Simplifier::remove_border_vertex(Index b) {
 }
 
 // Cleaning, rotations, smoothing and requeueing around vertices an operation changed.
-void Simplifier::after_change(std::initializer_list<Index> touched) {
+void Simplifier::after_change(const Index* first, const Index* last) {
   region_faces_.clear();
-  work_.assign(touched.begin(), touched.end());
+  work_.assign(first, last);
   CleanCounts cc;
   clean_from(m_, work_, cc, &region_faces_);
   rep_.doublets += cc.doublets;
   rep_.singlets += cc.singlets;
-  for (Index x : touched) add_faces_around(x, region_faces_);
+  for (const Index* x = first; x != last; ++x) add_faces_around(*x, region_faces_);
   if (opt_.rotations) rotate_in_region();
   const bool fine =  // see SimplifyOptions::fine_phase
       opt_.fine_phase > 0 && opt_.target_faces > 0 && m_.n_faces() > opt_.fine_phase * opt_.target_faces;
@@ -726,6 +738,121 @@ void Simplifier::after_change(std::initializer_list<Index> touched) {
     smooth_region(std::max(1, opt_.smoothing_sweeps - 1));
   }
   requeue_region();
+}
+
+// Poly-chord collapses (ours; SimplifyOptions::chord_collapses), once no diagonal
+// collapse is left above the target: every chord of at most kChordFaces faces, shortest
+// crossed edges (against their rest length) first. A chord is taken while that brings
+// the face count closer to the target, and not if an earlier one of the same batch
+// changed it; then the loop goes back to diagonal collapses.
+bool Simplifier::collapse_chords() {
+  constexpr Index kChordFaces = 64;
+  const Index target = opt_.target_faces;
+  struct Candidate {
+    double key;
+    Index h;
+  };
+  std::vector<Candidate> candidates;
+  std::vector<char> seen(2 * std::size_t(m_.face_capacity()), 0);  // per face and parity of the crossed edges
+  for (Index f = 0; f < m_.face_capacity(); ++f)
+    for (Index k = 0; k < 2 && m_.is_face_live(f); ++k) {
+      if (seen[2 * f + k]) continue;
+      seen[2 * f + k] = 1;
+      if (!gather_chord(m_, QuadMesh::halfedge(f, k), chord_, kChordFaces)) continue;
+      double key = 0;
+      for (Index i = 0; i < chord_.pairs(); ++i) {
+        const Index l = chord_.left[i], r = chord_.right[i];
+        key += (m_.position(l) - m_.position(r)).norm() / rest_length(l, r);
+      }
+      for (std::size_t i = 0; i < chord_.faces.size(); ++i)
+        seen[2 * chord_.faces[i] + (QuadMesh::corner(chord_.entries[i]) & 1u)] = 1;
+      candidates.push_back({key / double(chord_.pairs()), chord_.entries[0]});
+    }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.key != b.key ? a.key < b.key : a.h < b.h; });
+  std::fill(seen.begin(), seen.end(), 0);  // now: faces changed by this batch
+  Index done = 0;
+  for (const Candidate& c : candidates) {
+    if (m_.n_faces() <= target) break;
+    if (!m_.is_face_live(QuadMesh::face(c.h)) || !gather_chord(m_, c.h, chord_, kChordFaces)) continue;
+    if (2 * (m_.n_faces() - target) <= Index(chord_.faces.size())) continue;
+    bool changed = false;
+    for (Index f : chord_.faces) changed = changed || seen[f];
+    if (changed || !try_collapse_chord(chord_)) continue;
+    ++done;
+    for (Index v : region_verts_)
+      if (m_.is_vertex_live(v)) m_.for_each_outgoing(v, [&](Index h) { seen[QuadMesh::face(h)] = 1; });
+  }
+  return done > 0;
+}
+
+bool Simplifier::try_collapse_chord(const Chord& chord) {
+  if (!can_collapse_chord(m_, chord)) {
+    ++rep_.refused_topology;
+    return false;
+  }
+  const Index pairs = chord.pairs();
+  for (Index i = 0; i < pairs; ++i) {
+    const Index l = chord.left[i], r = chord.right[i];
+    if (opt_.preserve_boundary && (m_.is_border_vertex(l) || m_.is_border_vertex(r))) {
+      ++rep_.refused_topology;
+      return false;
+    }
+    const bool open_end = !chord.closed && (i == 0 || i == pairs - 1);
+    if (opt_.max_valence > 0 && m_.valence(l) + m_.valence(r) - (open_end ? 3 : 4) > opt_.max_valence) {
+      ++rep_.refused_valence;
+      return false;
+    }
+  }
+  // Each merged vertex: a border end keeps its place; two border ends (an open end of
+  // the chord) meet at the point of M0 closest to their midpoint, not through
+  // closest_on_border(), whose walk may start on the other border of a part one
+  // triangle wide (a ribbon: every chord refused); otherwise the midpoint projected
+  // onto M0.
+  chord_pos_.resize(pairs);
+  chord_feet_.resize(pairs);
+  for (Index i = 0; i < pairs; ++i) {
+    const Index l = chord.left[i], r = chord.right[i];
+    const bool bl = m_.is_border_vertex(l), br = m_.is_border_vertex(r);
+    const Vec3 mid = 0.5 * (m_.position(l) + m_.position(r));
+    SurfacePoint foot;
+    if (bl != br) {
+      foot = ref_.closest(m_.position(bl ? l : r));
+    } else if (bl) {
+      foot = ref_.closest(mid);
+    } else {
+      foot = ref_.project_near(foot_face_[l], mid, m_.vertex_area_normal(l) + m_.vertex_area_normal(r),
+                               2 * (m_.position(l) - m_.position(r)).norm());
+    }
+    if (!foot.found()) {
+      ++rep_.refused_geometry;
+      return false;
+    }
+    chord_pos_[i] = foot.point;
+    chord_feet_[i] = foot;
+  }
+  faces_beside_chord(m_, chord, beside_);
+  for (Index g : beside_) {
+    Vec3 q[4];
+    for (Index k = 0; k < 4; ++k) {
+      const Index v = m_.vertex(g, k);
+      const int pair = chord_pair_of(chord, v);
+      q[k] = pair >= 0 ? chord_pos_[pair] : m_.position(v);
+    }
+    if (!shape_ok(g, q, Vec3::Zero())) {
+      ++rep_.refused_geometry;
+      return false;
+    }
+    if (opt_.adaptive && !within_m_fitmap(q)) {  // the enlarged faces, as for a diagonal collapse
+      ++rep_.refused_fitmap;
+      return false;
+    }
+  }
+  collapse_chord(m_, chord, chord_pos_);
+  for (Index i = 0; i < pairs; ++i) record_foot(chord.left[i], chord_feet_[i]);
+  ++rep_.chord_collapses;
+  after_change(chord.left.data(), chord.left.data() + chord.left.size());
+  return true;
 }
 
 // Unfolding (ours; SimplifyOptions::unfold): a quad bent past 90 degrees wraps a thin
@@ -866,60 +993,64 @@ SimplifyReport Simplifier::run() {
   const Index target = opt_.target_faces;
   const Index span = rep_.initial_faces > target ? rep_.initial_faces - target : 1;
   Index next_mu = 0;
-  while (m_.n_faces() > target && !heap_.empty()) {
-    std::pop_heap(heap_.begin(), heap_.end(), LaterFirst{});
-    const Entry e = heap_.back();
-    heap_.pop_back();
-    if (!m_.is_face_live(e.face) || e.version != version_[e.face]) continue;
-    Vec3 pos;
-    SurfacePoint foot;
-    // A refused face comes back only when something around it changes.
-    if (!can_collapse_diagonal(m_, e.face, e.k) || touches_kept_border(e.face, e.k)) {
-      ++rep_.refused_topology;
-      continue;
-    }
-    if (exceeds_valence(e.face, e.k)) {
-      ++rep_.refused_valence;
-      continue;
-    }
-    if (!place(e.face, e.k, pos, foot)) {
-      ++rep_.refused_geometry;
-      continue;
-    }
-    if (opt_.adaptive && !m_fitmap_allows(e.face, e.k, pos)) {
-      ++rep_.refused_fitmap;
-      const double a = 0.5 * m_.face_area_normal(e.face).norm();
-      blocked_.push_back({e.face, version_[e.face], a});
-      blocked_bound_ += area_ > 0 ? a / area_ : 0.0;
-      // Stop at the refusal that takes the share over. Checking only every 16th refusal
-      // ran past it where few faces are blocked: the moai went on from 38 quads to 34.
-      if (target == 0 && blocked_bound_ >= opt_.halt_share && blocked_share() >= opt_.halt_share) break;
-      // Runs with a target never recount above: prune the stale entries now and then.
-      if (blocked_.size() > 2 * std::size_t(m_.n_faces()) + 1024) blocked_share();
-      continue;
-    }
-    cycle(e.face, e.k, pos, foot);
-    if (has_border_ && opt_.coarsen_border && !opt_.preserve_boundary && rep_.collapses % 64 == 0)
-      coarsen_border();
-    if (rep_.collapses >= next_mu) {
-      // mu drifts slowly: an exact recount every 256 collapses is cheaper than tracking every
-      // edge each operation touches, and as accurate, if it comes after at least 2% of the
-      // faces (mu moves ~1%) and at most a tenth (~5%). Without that upper bound a 900-quad
-      // grid simplified to 50 left mu far behind: the border (coarsened below 1.3 mu) kept
-      // most of its edges, the target was missed at 70 quads, and quads spanned the grid.
-      update_mu();
-      next_mu = rep_.collapses + std::clamp<Index>(256, m_.n_faces() / 50, std::max<Index>(1, m_.n_faces() / 10));
-    }
-    if (heap_.size() > 16 * std::size_t(m_.n_faces()) + 1024) rebuild_heap();
-    if (opt_.progress && rep_.collapses % 256 == 0) {
-      // Without a target (automatic halting) the end is unknown: report the share of
-      // faces removed, which only grows.
-      const float done = float(rep_.initial_faces - m_.n_faces()) / float(target ? span : rep_.initial_faces);
-      if (!opt_.progress(std::min(done, 1.f), "simplify")) {
-        rep_.cancelled = true;
-        break;
+  // Diagonal collapses; once none is left above the target, chords (collapse_chords()).
+  for (;;) {
+    while (m_.n_faces() > target && !heap_.empty()) {
+      std::pop_heap(heap_.begin(), heap_.end(), LaterFirst{});
+      const Entry e = heap_.back();
+      heap_.pop_back();
+      if (!m_.is_face_live(e.face) || e.version != version_[e.face]) continue;
+      Vec3 pos;
+      SurfacePoint foot;
+      // A refused face comes back only when something around it changes.
+      if (!can_collapse_diagonal(m_, e.face, e.k) || touches_kept_border(e.face, e.k)) {
+        ++rep_.refused_topology;
+        continue;
+      }
+      if (exceeds_valence(e.face, e.k)) {
+        ++rep_.refused_valence;
+        continue;
+      }
+      if (!place(e.face, e.k, pos, foot)) {
+        ++rep_.refused_geometry;
+        continue;
+      }
+      if (opt_.adaptive && !m_fitmap_allows(e.face, e.k, pos)) {
+        ++rep_.refused_fitmap;
+        const double a = 0.5 * m_.face_area_normal(e.face).norm();
+        blocked_.push_back({e.face, version_[e.face], a});
+        blocked_bound_ += area_ > 0 ? a / area_ : 0.0;
+        // Stop at the refusal that takes the share over. Checking only every 16th refusal
+        // ran past it where few faces are blocked: the moai went on from 38 quads to 34.
+        if (target == 0 && blocked_bound_ >= opt_.halt_share && blocked_share() >= opt_.halt_share) break;
+        // Runs with a target never recount above: prune the stale entries now and then.
+        if (blocked_.size() > 2 * std::size_t(m_.n_faces()) + 1024) blocked_share();
+        continue;
+      }
+      cycle(e.face, e.k, pos, foot);
+      if (has_border_ && opt_.coarsen_border && !opt_.preserve_boundary && rep_.collapses % 64 == 0)
+        coarsen_border();
+      if (rep_.collapses >= next_mu) {
+        // mu drifts slowly: an exact recount every 256 collapses is cheaper than tracking every
+        // edge each operation touches, and as accurate, if it comes after at least 2% of the
+        // faces (mu moves ~1%) and at most a tenth (~5%). Without that upper bound a 900-quad
+        // grid simplified to 50 left mu far behind: the border (coarsened below 1.3 mu) kept
+        // most of its edges, the target was missed at 70 quads, and quads spanned the grid.
+        update_mu();
+        next_mu = rep_.collapses + std::clamp<Index>(256, m_.n_faces() / 50, std::max<Index>(1, m_.n_faces() / 10));
+      }
+      if (heap_.size() > 16 * std::size_t(m_.n_faces()) + 1024) rebuild_heap();
+      if (opt_.progress && rep_.collapses % 256 == 0) {
+        // Without a target (automatic halting) the end is unknown: report the share of
+        // faces removed, which only grows.
+        const float done = float(rep_.initial_faces - m_.n_faces()) / float(target ? span : rep_.initial_faces);
+        if (!opt_.progress(std::min(done, 1.f), "simplify")) {
+          rep_.cancelled = true;
+          break;
+        }
       }
     }
+    if (!opt_.chord_collapses || target == 0 || m_.n_faces() <= target || rep_.cancelled || !collapse_chords()) break;
   }
   if (opt_.adaptive) rep_.blocked_share = blocked_share();
   if (opt_.unfold && !opt_.refuse_folds && !rep_.cancelled) unfold();

@@ -88,6 +88,12 @@ struct SimplifyOptions {
   //! from 87 to 8 (24 with rotations alone), with the same runs within [0.5, 2] mu, the
   //! same mean RMS and 0.1 points fewer regular vertices (bench/RESULTS.md).
   bool unfold = true;
+  //! Once no diagonal collapse is left above the face target, take out whole chords of
+  //! quads (rings around tubes, one quad's length of a strip; ops/chord_collapse.h),
+  //! shortest crossed edges first, then go back to diagonal collapses. Ours: the paper's
+  //! operators cannot thin a part a few quads round, and such parts stopped the run
+  //! above the target (a thin tube at 426 quads for a target of 50).
+  bool chord_collapses = true;
   //! Called with the fraction done; returning false stops early with a valid mesh.
   ProgressFn progress;
 };
@@ -97,6 +103,7 @@ struct SimplifyReport {
   Index faces = 0;
   Index collapses = 0;
   Index border_collapses = 0;  //!< border ear collapses (coarsen_border)
+  Index chord_collapses = 0;   //!< poly-chord collapses (chord_collapses)
   Index rotations = 0;
   Index unfolds = 0;  //!< rotations and corner moves that unfolded a quad (or bent it less) at the end
   Index doublets = 0;
