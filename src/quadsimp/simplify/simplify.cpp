@@ -744,7 +744,9 @@ void Simplifier::after_change(const Index* first, const Index* last) {
 // collapse is left above the target: every chord of at most kChordFaces faces, shortest
 // crossed edges (against their rest length) first. A chord is taken while that brings
 // the face count closer to the target, and not if an earlier one of the same batch
-// changed it; then the loop goes back to diagonal collapses.
+// changed it; then the loop goes back to diagonal collapses. One chord per batch gave
+// the same results on the odd inputs, but each batch walks the whole mesh: a ribbon of
+// 5,000 quads to 50 took 2.9 s instead of 0.06 s.
 bool Simplifier::collapse_chords() {
   constexpr Index kChordFaces = 64;
   const Index target = opt_.target_faces;
