@@ -3,6 +3,7 @@
 // validate() after each step.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "fixtures/shapes.h"
@@ -384,6 +385,18 @@ TEST(BorderEar, refusals) {
 
 namespace {
 
+// Converted closed and open meshes, and quad grids with and without a hole.
+std::vector<QuadMesh> operator_test_meshes() {
+  std::vector<QuadMesh> meshes;
+  for (TriMesh t : {tri_sphere(10, 14), tri_torus(16, 10), tri_grid(9, 8, 0.3), two_spheres()}) {
+    clean(t);
+    meshes.push_back(tri_to_quad(t));
+  }
+  meshes.push_back(quad_grid(6, 5));
+  meshes.push_back(grid_with_hole(7));
+  return meshes;
+}
+
 std::vector<Vec3> chord_midpoints(const QuadMesh& m, const Chord& c) {
   std::vector<Vec3> p;
   for (Index i = 0; i < c.pairs(); ++i) p.push_back(0.5 * (m.position(c.left[i]) + m.position(c.right[i])));
@@ -487,6 +500,20 @@ TEST(ChordCollapse, grid_column_and_refusals) {
   EXPECT_TRUE(collapse_chord_through(bigger, 0, 4));
   validate(bigger);
   EXPECT_EQ(bigger.n_faces(), 12u);
+  // A tube wound as one helical strip: quad k is (k, k+1, k+1+n, k+n). The chord across
+  // its edges k-(k+n) runs along the helix, and one turn later its left side is the
+  // ring its right side had: it touches itself.
+  const int n = 4, quads = 20;
+  std::vector<Vec3> p;
+  for (int k = 0; k <= quads + n; ++k)
+    p.emplace_back(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n), double(k) / n);
+  std::vector<std::array<Index, 4>> q;
+  for (int k = 0; k < quads; ++k) q.push_back({Index(k), Index(k + 1), Index(k + 1 + n), Index(k + n)});
+  QuadMesh helix = QuadMesh::from_faces(p, q);
+  Chord spiral;
+  ASSERT_TRUE(gather_chord(helix, halfedge_between(helix, 8 + n, 8), spiral, 64));
+  EXPECT_EQ(spiral.faces.size(), std::size_t(quads));
+  EXPECT_FALSE(can_collapse_chord(helix, spiral));
   Chord longer;  // gathering stops past max_faces
   EXPECT_FALSE(gather_chord(bigger, halfedge_between(bigger, 0, 1), longer, 2));
 }
@@ -494,13 +521,7 @@ TEST(ChordCollapse, grid_column_and_refusals) {
 // Every chord of several meshes, each collapsed on a copy where allowed: the result
 // must pass validate() and have no shared diagonal.
 TEST(ChordCollapse, every_allowed_chord_keeps_every_invariant) {
-  std::vector<QuadMesh> meshes;
-  for (TriMesh t : {tri_sphere(8, 10), tri_torus(12, 8), tri_grid(6, 5, 0.3), two_spheres()}) {
-    clean(t);
-    meshes.push_back(tri_to_quad(t));
-  }
-  meshes.push_back(quad_grid(4, 3));
-  meshes.push_back(grid_with_hole(5));
+  std::vector<QuadMesh> meshes = operator_test_meshes();
   meshes.push_back(grid_with_hole(3));
   meshes.push_back(quad_tube(5, 4));
   meshes.push_back(quad_tube(6, 5, true));
@@ -529,13 +550,7 @@ TEST(ChordCollapse, every_allowed_chord_keeps_every_invariant) {
 }
 
 TEST(Operators, random_sequences_keep_every_invariant) {
-  std::vector<QuadMesh> meshes;
-  for (TriMesh t : {tri_sphere(10, 14), tri_torus(16, 10), tri_grid(9, 8, 0.3), two_spheres()}) {
-    clean(t);
-    meshes.push_back(tri_to_quad(t));
-  }
-  meshes.push_back(quad_grid(6, 5));
-  meshes.push_back(grid_with_hole(7));
+  std::vector<QuadMesh> meshes = operator_test_meshes();
   std::mt19937 rng(7);
   int ears = 0;
   for (QuadMesh& m : meshes) {
