@@ -55,9 +55,8 @@ void print_quality(const QuadQuality& q, const SurfaceDistance* d) {
 }
 
 void print_summary(const SimplifyArgs& a, const QuadQuality& q, double seconds, const SimplifyReport& r) {
-  std::printf("%s -> %s: %u faces, regular %.1f%%, max valence %d, %.2f s (%u collapses, %u rotations)\n",
-              a.input.c_str(), a.output.c_str(), q.faces, q.regular_percent, q.max_valence, seconds, r.collapses,
-              r.rotations);
+  std::printf("%s -> %s: %u faces, regular %.1f%%, max valence %d, %.2f s (%s)\n", a.input.c_str(), a.output.c_str(),
+              q.faces, q.regular_percent, q.max_valence, seconds, operations_done(r).c_str());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // Runs the real quadsimp binary: exit codes, messages, and what lands on disk.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -119,6 +120,17 @@ TEST_F(Cli, a_target_the_mesh_cannot_reach_is_reported) {
   r = run("simplify " + grid + " " + p("g.ply") + " --faces 4 --preserve-boundary -q");
   EXPECT_EQ(r.out.find("above the target"), std::string::npos) << r.out;
   r = run("simplify " + input_ + " " + p("s.ply") + " --faces 60");
+  EXPECT_EQ(r.out.find("above the target"), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, a_strip_one_quad_wide_reaches_its_target_by_chord_collapses) {
+  TriMesh strip = fixtures::tri_grid(60, 1);
+  for (Vec3& q : strip.positions) q = Vec3(q.x(), q.y() / 60, 0.2 * std::sin(M_PI * q.x()));
+  write_tri_mesh_ply(p("strip.ply"), strip);
+  const CliRun r = run("simplify " + p("strip.ply") + " " + p("st.ply") + " --faces 15");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find(": 15 faces"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" chord collapses, "), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("above the target"), std::string::npos) << r.out;
 }
 

@@ -79,6 +79,27 @@ def test_a_target_the_mesh_cannot_reach_is_logged(capfd):
     assert "above the target" not in capfd.readouterr().err
 
 
+def test_a_strip_one_quad_wide_reaches_its_target_by_chord_collapses(capfd):
+    # 60 square cells in a row, bent: only poly-chord collapses can shorten it.
+    n = 60
+    x = np.repeat(np.linspace(0, 1, n + 1), 2)
+    y = np.tile([0.0, 1.0 / n], n + 1)
+    verts = np.column_stack([x, y, 0.2 * np.sin(np.pi * x)])
+    faces = []
+    for i in range(n):
+        a, b, c, d = 2 * i, 2 * i + 2, 2 * i + 3, 2 * i + 1
+        faces += [[a, b, c], [a, c, d]]
+    ms = pymeshlab.MeshSet(verbose=True)
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=verts, face_matrix=np.array(faces)), "strip")
+    ms.meshing_quad_mesh_simplification(targetfacenum=15)
+    out = ms.current_mesh()
+    assert is_pure_quad(out)
+    assert len(out.polygonal_face_list()) == 15
+    err = capfd.readouterr().err
+    assert "chord collapses" in err
+    assert "above the target" not in err
+
+
 def test_adaptive_with_automatic_halting():
     ms = pymeshlab.MeshSet()
     ms.add_mesh(open_grid(40), "grid")

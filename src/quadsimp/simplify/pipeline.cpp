@@ -59,4 +59,10 @@ std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
          n(r.refused_geometry) + " shape; " + n(r.refused_fitmap) + " M-fitmap)";
 }
 
+std::string operations_done(const SimplifyReport& r) {
+  const auto n = [](Index x) { return std::to_string(x); };
+  return n(r.collapses) + " collapses, " + (r.chord_collapses ? n(r.chord_collapses) + " chord collapses, " : "") +
+         n(r.rotations) + " rotations";
+}
+
 }  // namespace qs

@@ -36,4 +36,8 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
 //! target, and a user asking for 50 quads must not take 568 for a bug.
 std::string target_shortfall(const SimplifyReport& report, Index target_faces);
 
+//! The operations a run did, for a summary line: "N collapses, M rotations", with the
+//! chord collapses between them when there were any.
+std::string operations_done(const SimplifyReport& report);
+
 }  // namespace qs
