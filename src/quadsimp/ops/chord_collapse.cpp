@@ -74,8 +74,9 @@ bool quad_edge(int i, int j) {
 
 bool can_collapse_chord(const QuadMesh& m, const Chord& chord) {
   const Index n = Index(chord.faces.size()), p = chord.pairs();
-  // A chord that meets a face twice meets its corners twice too.
   if (n == 0) return false;
+  // Each vertex in one pair at most, which also refuses a chord that meets a face twice
+  // (it meets the face's corners twice).
   std::vector<Index> ends = chord.left;
   ends.insert(ends.end(), chord.right.begin(), chord.right.end());
   if (has_duplicates(ends)) return false;
