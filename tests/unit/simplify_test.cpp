@@ -556,7 +556,13 @@ TEST(Simplify, a_strip_one_quad_wide_shortens_by_chord_collapses) {
   const SimplifyReport r = run_and_check(c, 15, ref);
   EXPECT_GT(r.chord_collapses, 0u);
   EXPECT_EQ(count_components(c.quads), 1u);
-  // The quads grew evenly along the strip (across it they keep its width).
+  // The strip keeps its ends (border corners stay where they are) ...
+  double x_lo = 1, x_hi = 0;
+  for (Index v = 0; v < c.quads.n_vertices(); ++v)
+    x_lo = std::min(x_lo, c.quads.position(v).x()), x_hi = std::max(x_hi, c.quads.position(v).x());
+  EXPECT_NEAR(x_lo, 0.0, 1e-9);
+  EXPECT_NEAR(x_hi, 1.0, 1e-9);
+  // ... and the quads grew evenly along it (across it they keep its width).
   for (Index f = 0; f < c.quads.n_faces(); ++f) {
     double lo = 1, hi = 0;
     for (Index k = 0; k < 4; ++k) lo = std::min(lo, c.quads.position(c.quads.vertex(f, k)).x()),

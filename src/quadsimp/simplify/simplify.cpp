@@ -305,7 +305,20 @@ double Simplifier::border_turn(Index v) const {
 // 0.5 mu, 4 with this rule. Pinning nothing loses the square's corners.
 bool Simplifier::is_border_corner(Index v) const {
   const double t = border_turn(v);
-  return t > M_PI / 4 && std::max(border_turn(m_.to(m_.out(v))), border_turn(m_.from(m_.border_in(v)))) < 0.5 * t;
+  if (t <= M_PI / 4) return false;
+  const Index next = m_.to(m_.out(v)), prev = m_.from(m_.border_in(v));
+  const double t_next = border_turn(next), t_prev = border_turn(prev);
+  if (std::max(t_next, t_prev) < 0.5 * t) return true;
+  // The end of a strip one quad wide: v and a neighbour w, both of valence 2 (the free
+  // corners of a quad with three border edges), both turn by more than 45 degrees, and
+  // the border runs on straighter beyond the pair. Unpinned, the springs and the chord
+  // collapses there slid a strip's ends inwards (by half a quad per chord).
+  const auto strip_end = [&](Index w, double t_w, double t_before_v, Index after_w) {
+    return m_.valence(v) == 2 && m_.valence(w) == 2 && t_w > M_PI / 4 &&
+           std::max(t_before_v, border_turn(after_w)) < 0.5 * std::min(t, t_w);
+  };
+  return strip_end(next, t_next, t_prev, m_.to(m_.out(next))) ||
+         strip_end(prev, t_prev, t_next, m_.from(m_.border_in(prev)));
 }
 
 // Where the merged vertex goes: the midpoint re-projected onto M0 along the normal
@@ -807,7 +820,8 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
     }
   }
   // Each merged vertex: a border end keeps its place; two border ends (an open end of
-  // the chord) meet at the point of M0 closest to their midpoint, not through
+  // the chord) meet at a border corner if either is one, else at the point of M0
+  // closest to their midpoint, not through
   // closest_on_border(), whose walk may start on the other border of a part one
   // triangle wide (a ribbon: every chord refused); otherwise the midpoint projected
   // onto M0.
@@ -821,7 +835,13 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
     if (bl != br) {
       foot = ref_.closest(m_.position(bl ? l : r));
     } else if (bl) {
-      foot = ref_.closest(mid);
+      // A border corner keeps its place, as in border coarsening.
+      const bool corner_l = is_border_corner(l), corner_r = is_border_corner(r);
+      if (corner_l && corner_r) {
+        ++rep_.refused_topology;
+        return false;
+      }
+      foot = ref_.closest(corner_l ? m_.position(l) : corner_r ? m_.position(r) : mid);
     } else {
       foot = ref_.project_near(foot_face_[l], mid, m_.vertex_area_normal(l) + m_.vertex_area_normal(r),
                                2 * (m_.position(l) - m_.position(r)).norm());
