@@ -759,7 +759,9 @@ void Simplifier::after_change(const Index* first, const Index* last) {
 // the face count closer to the target, and not if an earlier one of the same batch
 // changed it; then the loop goes back to diagonal collapses. One chord per batch gave
 // the same results on the odd inputs, but each batch walks the whole mesh: a ribbon of
-// 5,000 quads to 50 took 2.9 s instead of 0.06 s.
+// 5,000 quads to 50 took 2.9 s instead of 0.06 s. Without the marks (every allowed
+// chord of the list, neighbours too) an annulus at 10 quads ended with RMS 11.8e-3
+// instead of 3.1e-3.
 bool Simplifier::collapse_chords() {
   constexpr Index kChordFaces = 64;
   const Index target = opt_.target_faces;
