@@ -43,10 +43,9 @@ MeshFile mesh_file_of(const CMesh& m) {
 }
 
 //! Replaces the content of `m` with the quads of `q`, each as two triangles split
-//! along a diagonal, which is marked faux: the shorter one, unless only its corners
-//! also share another face. At a doublet (two quads sharing two edges) both quads'
-//! shorter diagonals join the same two corners, which made the same triangle twice,
-//! and MeshLab's polygon view then saw an 8-gon there.
+//! along the diagonal split_diagonals() picks, which is marked faux. At a doublet (two
+//! quads sharing two edges) both quads' shorter diagonals join the same two corners,
+//! which made the same triangle twice, and MeshLab's polygon view then saw an 8-gon.
 template <class CMesh>
 void assign_quads(CMesh& m, const QuadMesh& q) {
   using Alloc = typename vcg::tri::Allocator<CMesh>;
@@ -64,14 +63,11 @@ void assign_quads(CMesh& m, const QuadMesh& q) {
   (void)vi;
   Alloc::AddFaces(m, 2 * std::size_t(q.n_faces()));
   std::size_t f = 0;
+  const std::vector<std::uint8_t> split = split_diagonals(q);
   for (Index face = 0; face < q.face_capacity(); ++face) {
     if (!q.is_face_live(face)) continue;
     auto c = q.face_vertices(face);
-    // Rotate so that the diagonal taken is c0-c2.
-    const bool shorter_02 =
-        (q.position(c[0]) - q.position(c[2])).squaredNorm() <= (q.position(c[1]) - q.position(c[3])).squaredNorm();
-    const bool shared_02 = share_a_face(q, c[0], c[2], face), shared_13 = share_a_face(q, c[1], c[3], face);
-    if (shared_02 != shared_13 ? shared_02 : !shorter_02) c = {c[1], c[2], c[3], c[0]};
+    if (split[face]) c = {c[1], c[2], c[3], c[0]};  // the diagonal taken is c0-c2
     auto& t1 = m.face[f++];
     auto& t2 = m.face[f++];
     t1.V(0) = &m.vert[id[c[0]]], t1.V(1) = &m.vert[id[c[1]]], t1.V(2) = &m.vert[id[c[2]]];

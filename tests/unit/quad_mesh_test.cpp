@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
 #include <set>
 
 #include "fixtures/shapes.h"
@@ -195,4 +197,54 @@ TEST(QuadMesh, connected_components_label_each_part_apart) {
   ASSERT_EQ(component.size(), m.vertex_capacity());
   for (Index v = 0; v < 9; ++v) EXPECT_EQ(component[v], 0u);
   for (Index v = 9; v < 18; ++v) EXPECT_EQ(component[v], 1u);
+}
+
+namespace {
+
+// Largest number of triangles on one segment, and whether a triangle repeats, when
+// every face is split along split_diagonals().
+std::pair<int, bool> split_triangles(const QuadMesh& m) {
+  const auto split = split_diagonals(m);
+  std::map<std::pair<Index, Index>, int> uses;
+  std::set<std::array<Index, 3>> seen;
+  bool repeated = false;
+  for (Index f = 0; f < m.face_capacity(); ++f) {
+    if (!m.is_face_live(f)) continue;
+    const Index k = split[f];
+    const Index a = m.vertex(f, k), b = m.vertex(f, k + 1), c = m.vertex(f, k + 2), d = m.vertex(f, k + 3);
+    for (std::array<Index, 3> t : {std::array<Index, 3>{a, b, c}, std::array<Index, 3>{a, c, d}}) {
+      for (int i = 0; i < 3; ++i) ++uses[std::minmax(t[i], t[(i + 1) % 3])];
+      std::sort(t.begin(), t.end());
+      repeated |= !seen.insert(t).second;
+    }
+  }
+  int most = 0;
+  for (const auto& [e, n] : uses) most = std::max(most, n);
+  return {most, repeated};
+}
+
+}  // namespace
+
+TEST(QuadMesh, split_diagonals_keep_the_triangles_manifold) {
+  // Two quads on the same four corners: split alike, they were the same two triangles.
+  std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const QuadMesh pillow = QuadMesh::from_faces(p, {{0, 1, 2, 3}, {0, 3, 2, 1}});
+  EXPECT_EQ(split_triangles(pillow), std::make_pair(2, false));
+  // An octahedron paired into four quads: each quad's two diagonals both join corners
+  // of another quad.
+  const std::vector<Vec3> o = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const QuadMesh octahedron =
+      QuadMesh::from_faces(o, {{4, 0, 5, 2}, {4, 2, 5, 1}, {4, 1, 5, 3}, {4, 3, 5, 0}});
+  EXPECT_GT(count_shared_diagonals(octahedron), 0u);
+  EXPECT_EQ(split_triangles(octahedron), std::make_pair(2, false));
+  // Where no diagonal is shared, the shorter one.
+  const QuadMesh g = fixtures::quad_grid(2, 2);
+  QuadMesh skewed = g;
+  skewed.position(4) += Vec3(0.3, 0.3, 0);  // the centre, towards corner 8
+  const auto split = split_diagonals(skewed);
+  for (Index f = 0; f < skewed.face_capacity(); ++f) {
+    const double d0 = (skewed.position(skewed.vertex(f, 0)) - skewed.position(skewed.vertex(f, 2))).norm();
+    const double d1 = (skewed.position(skewed.vertex(f, 1)) - skewed.position(skewed.vertex(f, 3))).norm();
+    EXPECT_EQ(split[f], d0 > d1 ? 1 : 0) << "face " << f;
+  }
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <string>
 #include <unordered_map>
+#include <utility>
 
 #include "quadsimp/util/errors.h"
 
@@ -269,6 +270,33 @@ Index count_shared_diagonals(const QuadMesh& m) {
     if (m.is_face_live(f))
       for (Index k = 0; k < 2; ++k) n += share_a_face(m, m.vertex(f, k), m.vertex(f, k + 2), f);
   return n;
+}
+
+std::vector<std::uint8_t> split_diagonals(const QuadMesh& m) {
+  auto joined_by_edge = [&](Index p, Index q) {
+    bool edge = false;
+    m.for_each_outgoing(p, [&](Index h) { edge |= m.to(h) == q || m.from(QuadMesh::prev(h)) == q; });
+    return edge;
+  };
+  std::vector<std::uint8_t> split(m.face_capacity(), 0);
+  std::vector<std::pair<Index, Index>> taken;  // splits whose corners share another face
+  for (Index f = 0; f < m.face_capacity(); ++f) {
+    if (!m.is_face_live(f)) continue;
+    bool bad[2], shared[2];
+    double length[2];
+    std::pair<Index, Index> pair[2];
+    for (Index k = 0; k < 2; ++k) {
+      const Index p = m.vertex(f, k), q = m.vertex(f, k + 2);
+      pair[k] = std::minmax(p, q);
+      shared[k] = share_a_face(m, p, q, f);
+      bad[k] = shared[k] && (joined_by_edge(p, q) || std::find(taken.begin(), taken.end(), pair[k]) != taken.end());
+      length[k] = (m.position(p) - m.position(q)).squaredNorm();
+    }
+    const Index k = bad[0] != bad[1] ? bad[0] : shared[0] != shared[1] ? shared[0] : length[0] > length[1];
+    split[f] = std::uint8_t(k);
+    if (shared[k]) taken.push_back(pair[k]);
+  }
+  return split;
 }
 
 Index connected_components(const QuadMesh& m, std::vector<Index>& component) {

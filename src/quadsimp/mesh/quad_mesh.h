@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "quadsimp/util/types.h"
@@ -147,6 +148,14 @@ bool share_a_face(const QuadMesh& mesh, Index p, Index q, Index skip_a = kNone, 
 //! diagonal, as vcglib's importers did with one such pair, they make an edge of four
 //! triangles. validate() accepts them, but the operators never make one: 0 expected.
 Index count_shared_diagonals(const QuadMesh& mesh);
+
+//! For each face (by id; dead faces get 0), the diagonal along which to split it into two
+//! triangles, k for corners k and k+2: where possible not one whose corners are joined
+//! by an edge or by the split of another face, since either puts that segment in four
+//! triangles and MeshLab's polygon view then merges quads into 8-gons (two quads on the
+//! same four corners; the quads of a converted octahedron); then not one whose corners
+//! share another face; then the shorter.
+std::vector<std::uint8_t> split_diagonals(const QuadMesh& mesh);
 
 //! Labels every live vertex with its connected component (through faces), in order of
 //! their lowest vertex id; dead vertices get kNone. Returns the number of components.
