@@ -100,6 +100,16 @@ def test_a_strip_one_quad_wide_reaches_its_target_by_chord_collapses(capfd):
     assert "above the target" not in err
 
 
+def test_meshlabs_noisy_isosurface_comes_back_as_quads_only():
+    # MeshLab's own test surface: 40 pieces and 66 handles, so some quads must share
+    # both diagonals' corners with others; split along the wrong diagonal, MeshLab's
+    # polygon view merged pairs of them into 8-gons.
+    ms = pymeshlab.MeshSet()
+    ms.create_noisy_isosurface()
+    ms.meshing_quad_mesh_simplification(targetfacenum=50)
+    assert is_pure_quad(ms.current_mesh())
+
+
 def test_adaptive_with_automatic_halting():
     ms = pymeshlab.MeshSet()
     ms.add_mesh(open_grid(40), "grid")
