@@ -823,10 +823,9 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
   }
   // Each merged vertex: a border end keeps its place; two border ends (an open end of
   // the chord) meet at a border corner if either is one, else at the point of M0
-  // closest to their midpoint, not through
-  // closest_on_border(), whose walk may start on the other border of a part one
-  // triangle wide (a ribbon: every chord refused); otherwise the midpoint projected
-  // onto M0.
+  // closest to their midpoint (not through closest_on_border(), whose walk may start on
+  // the other border of a part one triangle wide: on a ribbon every chord was refused);
+  // otherwise the midpoint projected onto M0.
   chord_pos_.resize(pairs);
   chord_feet_.resize(pairs);
   for (Index i = 0; i < pairs; ++i) {
