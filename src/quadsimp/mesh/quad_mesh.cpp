@@ -2,6 +2,7 @@
 #include "quadsimp/mesh/quad_mesh.h"
 
 #include <algorithm>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -279,7 +280,7 @@ std::vector<std::uint8_t> split_diagonals(const QuadMesh& m) {
     return edge;
   };
   std::vector<std::uint8_t> split(m.face_capacity(), 0);
-  std::vector<std::pair<Index, Index>> taken;  // splits whose corners share another face
+  std::set<std::pair<Index, Index>> taken;  // splits whose corners share another face
   for (Index f = 0; f < m.face_capacity(); ++f) {
     if (!m.is_face_live(f)) continue;
     bool bad[2], shared[2];
@@ -289,12 +290,12 @@ std::vector<std::uint8_t> split_diagonals(const QuadMesh& m) {
       const Index p = m.vertex(f, k), q = m.vertex(f, k + 2);
       pair[k] = std::minmax(p, q);
       shared[k] = share_a_face(m, p, q, f);
-      bad[k] = shared[k] && (joined_by_edge(p, q) || std::find(taken.begin(), taken.end(), pair[k]) != taken.end());
+      bad[k] = shared[k] && (joined_by_edge(p, q) || taken.count(pair[k]));
       length[k] = (m.position(p) - m.position(q)).squaredNorm();
     }
     const Index k = bad[0] != bad[1] ? bad[0] : shared[0] != shared[1] ? shared[0] : length[0] > length[1];
     split[f] = std::uint8_t(k);
-    if (shared[k]) taken.push_back(pair[k]);
+    if (shared[k]) taken.insert(pair[k]);
   }
   return split;
 }

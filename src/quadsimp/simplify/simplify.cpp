@@ -797,6 +797,7 @@ bool Simplifier::collapse_chords() {
     for (Index f : chord_.faces) changed = changed || seen[f];
     if (changed || !try_collapse_chord(chord_)) continue;
     ++done;
+    // after_change() left the smoothed zone in region_verts_: its faces have changed.
     for (Index v : region_verts_)
       if (m_.is_vertex_live(v)) m_.for_each_outgoing(v, [&](Index h) { seen[QuadMesh::face(h)] = 1; });
   }
