@@ -73,6 +73,7 @@ class Simplifier {
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
   void coarsen_border();
   bool remove_border_vertex(Index b);
+  bool border_merge_point(Index a, Index c, const Vec3& otherwise, Vec3& p) const;
   void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
   void after_change(const Index* first, const Index* last);
   bool collapse_chords();
@@ -668,17 +669,26 @@ void Simplifier::coarsen_border() {
     if (m_.is_vertex_live(b) && m_.is_border_vertex(b)) remove_border_vertex(b);
 }
 
+// Where border vertices a and c merge: at a border corner if one of them is one (false
+// if both are), else at `otherwise`. Merging at the middle cut the corners of an
+// L-shaped grid by a third of mu (border coarsening) and took half a quad off a strip's
+// ends at every chord there.
+bool Simplifier::border_merge_point(Index a, Index c, const Vec3& otherwise, Vec3& p) const {
+  const bool corner_a = is_border_corner(a), corner_c = is_border_corner(c);
+  if (corner_a && corner_c) return false;
+  p = corner_a ? m_.position(a) : corner_c ? m_.position(c) : otherwise;
+  return true;
+}
+
 bool Simplifier::remove_border_vertex(Index b) {
   const Index out = m_.out(b), ha = m_.border_in(b);  // b -> c and a -> b, both on the border
   const Index a = m_.from(ha), c = m_.to(out);
   const double ab = (m_.position(a) - m_.position(b)).norm(), bc = (m_.position(b) - m_.position(c)).norm();
   const int valence = m_.valence(b);
   if (ab + bc >= kBorderShort * mu_at(b) || valence > 3) return false;
-  // a, b and c merge into one vertex, at b unless a or c is a corner, which then keeps
-  // its place (merging at b cut the corners of an L-shaped grid by a third of mu).
-  const bool corner_a = is_border_corner(a), corner_c = is_border_corner(c);
-  if (corner_a && corner_c) return false;
-  const Vec3 keep = m_.position(corner_a ? a : corner_c ? c : b);
+  // a, b and c merge into one vertex, at b unless a or c is a corner.
+  Vec3 keep;
+  if (!border_merge_point(a, c, m_.position(b), keep)) return false;
   // The ear is f with b at corner k, once b has a single face.
   auto try_ear = [&](Index ear, Index k) {
     // Unchecked, a corner that kept its place took in its border neighbours one after
@@ -837,13 +847,12 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
     if (bl != br) {
       foot = ref_.closest(m_.position(bl ? l : r));
     } else if (bl) {
-      // A border corner keeps its place, as in border coarsening.
-      const bool corner_l = is_border_corner(l), corner_r = is_border_corner(r);
-      if (corner_l && corner_r) {
+      Vec3 p;
+      if (!border_merge_point(l, r, mid, p)) {
         ++rep_.refused_topology;
         return false;
       }
-      foot = ref_.closest(corner_l ? m_.position(l) : corner_r ? m_.position(r) : mid);
+      foot = ref_.closest(p);
     } else {
       foot = ref_.project_near(foot_face_[l], mid, m_.vertex_area_normal(l) + m_.vertex_area_normal(r),
                                2 * (m_.position(l) - m_.position(r)).norm());
