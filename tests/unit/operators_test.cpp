@@ -552,7 +552,7 @@ TEST(ChordCollapse, every_allowed_chord_keeps_every_invariant) {
 TEST(Operators, random_sequences_keep_every_invariant) {
   std::vector<QuadMesh> meshes = operator_test_meshes();
   std::mt19937 rng(7);
-  int ears = 0;
+  int ears = 0, chords = 0;
   for (QuadMesh& m : meshes) {
     CleanCounts counts = clean_all(m);
     (void)counts;
@@ -561,7 +561,12 @@ TEST(Operators, random_sequences_keep_every_invariant) {
     for (int step = 0; step < 400; ++step) {
       const Index f = std::uniform_int_distribution<Index>(0, m.face_capacity() - 1)(rng);
       if (!m.is_face_live(f)) continue;
-      if (step % 5 == 4) {
+      if (step % 7 == 6) {
+        Chord c;
+        if (!gather_chord(m, QuadMesh::halfedge(f, step % 4), c, 1000) || !can_collapse_chord(m, c)) continue;
+        collapse_chord(m, c, chord_midpoints(m, c));
+        ++chords;
+      } else if (step % 5 == 4) {
         const Index k = step % 4;
         if (!can_collapse_border_ear(m, f, k)) continue;
         collapse_border_ear(m, f, k, m.position(m.vertex(f, k)));
@@ -588,4 +593,5 @@ TEST(Operators, random_sequences_keep_every_invariant) {
     validate(m);
   }
   EXPECT_GT(ears, 0) << "no border ear was exercised";
+  EXPECT_GT(chords, 0) << "no chord collapse was exercised";
 }
