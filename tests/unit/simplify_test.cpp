@@ -504,6 +504,29 @@ TEST(ReferenceSurface, project_near_walks_to_the_same_hit) {
   EXPECT_LT((out.point - flat.closest(Vec3(9, 9, 1)).point).norm(), 1e-12);
 }
 
+// The bounded search must find exactly what the unbounded one does: the centres of
+// chords between two vertices (a quad's corners), the vertices themselves (hint 0), and
+// with a hint too small to reach M0 (it widens).
+TEST(ReferenceSurface, closest_within_finds_the_closest_point) {
+  TriMesh s = tri_sphere(30, 40);
+  clean(s);
+  const ReferenceSurface ref(s);
+  for (Index v = 0; v + 37 < s.n_vertices(); v += 7) {
+    const Vec3 &a = s.positions[v], &b = s.positions[v + 37];
+    const Vec3 mid = 0.5 * (a + b);
+    const SurfacePoint expect = ref.closest(mid), got = ref.closest_within(mid, (a - mid).norm());
+    ASSERT_TRUE(got.found());
+    EXPECT_EQ(got.face, expect.face);
+    EXPECT_EQ(got.point, expect.point);
+    const SurfacePoint at = ref.closest_within(a, 0.0), at_expect = ref.closest(a);
+    EXPECT_EQ(at.face, at_expect.face);
+    EXPECT_LT(at.distance, 1e-6);
+  }
+  const SurfacePoint far = ref.closest_within(Vec3(3, 0, 0), 0.1);
+  ASSERT_TRUE(far.found()) << "a hint that reaches nothing falls back to the unbounded search";
+  EXPECT_NEAR(far.distance, ref.closest(Vec3(3, 0, 0)).distance, 1e-12);
+}
+
 TEST(ReferenceSurface, closest_on_border_stays_on_the_border) {
   // The grid's border bends in z with the bump; the closest point of the whole surface
   // to a point just inside lands off the border, the border search must not.

@@ -205,6 +205,13 @@ SurfacePoint ReferenceSurface::closest(const Vec3& p, double max_dist, const Vec
   return best;
 }
 
+SurfacePoint ReferenceSurface::closest_within(const Vec3& p, double hint) const {
+  // The slack covers Embree's float query point, rounded by up to about 1e-7 of the
+  // diagonal, and float radii.
+  const SurfacePoint s = closest(p, hint * (1 + 1e-6) + 1e-5 * diagonal_);
+  return s.found() ? s : closest(p);
+}
+
 SurfacePoint ReferenceSurface::project(const Vec3& p, const Vec3& dir, double max_dist) const {
   SurfacePoint s = ray_project(p, dir, max_dist);
   if (s.found()) return s;

@@ -52,6 +52,10 @@ class ReferenceSurface {
   //! normal agrees with it are considered.
   SurfacePoint closest(const Vec3& p, double max_dist = std::numeric_limits<double>::infinity(),
                        const Vec3& normal = Vec3::Zero()) const;
+  //! The closest point at any distance, for a p known to have a point of M0 within
+  //! `hint` (a vertex's own position, a face's corner): the search starts bounded by
+  //! it, which prunes most of the BVH, and widens only if that finds nothing.
+  SurfacePoint closest_within(const Vec3& p, double hint) const;
 
   //! Closest point to p on M0's border, searched along the border within `reach`
   //! (length along the border) of the border corners of triangle `start`; not found

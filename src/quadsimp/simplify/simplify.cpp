@@ -251,7 +251,10 @@ bool Simplifier::follows_reference(const Vec3& n, const std::array<Index, 4>& co
   // at 1K, gargoyle at 2K with --fast). The check only refuses: the Table 1 outputs
   // did not change.
   if (lowest < 0 || lowest * lowest < 0.5 * n.squaredNorm()) {
-    const SurfacePoint mid = ref_.closest(0.25 * (q[0] + q[1] + q[2] + q[3]));
+    const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    double corner2 = std::numeric_limits<double>::infinity();  // the corners lie on M0
+    for (int i = 0; i < 4; ++i) corner2 = std::min(corner2, (q[i] - centre).squaredNorm());
+    const SurfacePoint mid = ref_.closest_within(centre, std::sqrt(corner2));
     if (mid.found() && ref_.normal_at(mid).dot(n) < 0) return false;
   }
   return true;
@@ -1005,7 +1008,7 @@ SimplifyReport Simplifier::run() {
   }
   for (Index v = 0; v < m_.vertex_capacity(); ++v)
     if (m_.is_vertex_live(v)) {
-      const SurfacePoint s = ref_.closest(m_.position(v));
+      const SurfacePoint s = ref_.closest_within(m_.position(v), 0.0);  // M0's own vertices
       if (s.found()) record_foot(v, s);
     }
   for (Index v = 0; v < m_.vertex_capacity() && !has_border_; ++v)
