@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <fstream>
-#include <map>
 
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/io/load_input.h"
@@ -15,26 +14,6 @@
 namespace {
 
 const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
-
-qs::TriMesh split_in_four(const qs::TriMesh& t) {
-  qs::TriMesh out;
-  out.positions = t.positions;
-  std::map<std::pair<qs::Index, qs::Index>, qs::Index> mid;
-  auto midpoint = [&](qs::Index a, qs::Index b) {
-    const auto key = std::minmax(a, b);
-    auto [it, fresh] = mid.emplace(std::pair<qs::Index, qs::Index>(key.first, key.second), out.n_vertices());
-    if (fresh) out.positions.push_back(0.5 * (t.positions[a] + t.positions[b]));
-    return it->second;
-  };
-  for (const auto& f : t.faces) {
-    const qs::Index ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
-    out.faces.push_back({f[0], ab, ca});
-    out.faces.push_back({ab, f[1], bc});
-    out.faces.push_back({ca, bc, f[2]});
-    out.faces.push_back({ab, bc, ca});
-  }
-  return out;
-}
 
 double median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -61,7 +40,7 @@ void BM_FitmapsBunny(benchmark::State& state) {
 
 void BM_Fitmaps1M(benchmark::State& state) {
   if (!std::ifstream(kBunny)) return state.SkipWithError("glmark2-data's bunny.obj is not installed");
-  const qs::TriMesh t = split_in_four(split_in_four(qs::load_input(kBunny).reference));
+  const qs::TriMesh t = qs::split_in_four(qs::split_in_four(qs::load_input(kBunny).reference));
   for (auto _ : state) benchmark::DoNotOptimize(qs::compute_fitmaps(t).s.data());
   state.counters["triangles"] = t.n_faces();
 }

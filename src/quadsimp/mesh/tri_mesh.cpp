@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <numeric>
 #include <utility>
 
@@ -366,12 +367,13 @@ Vec3 working_origin(const std::vector<Vec3>& positions) {
   return centre.norm() > (hi - lo).norm() ? centre : Vec3::Zero();
 }
 
-Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::vector<Index>& component) {
+Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::vector<Index>& component,
+                      const std::function<bool(Index, Index)>& joined) {
   const Index nf = Index(adjacency.size());
   UnionFind uf(nf);
   for (Index f = 0; f < nf; ++f)
     for (Index g : adjacency[f])
-      if (g != kNone) uf.unite(f, g);
+      if (g != kNone && (!joined || joined(f, g))) uf.unite(f, g);
   component.assign(nf, kNone);
   std::vector<Index> id(nf, kNone);
   Index n = 0;
@@ -381,6 +383,25 @@ Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::v
     component[f] = id[root];
   }
   return n;
+}
+
+TriMesh split_in_four(const TriMesh& t) {
+  TriMesh out;
+  out.positions = t.positions;
+  std::map<std::pair<Index, Index>, Index> mid;
+  auto midpoint = [&](Index a, Index b) {
+    const auto [it, fresh] = mid.emplace(std::minmax(a, b), out.n_vertices());
+    if (fresh) out.positions.push_back(0.5 * (t.positions[a] + t.positions[b]));
+    return it->second;
+  };
+  for (const auto& f : t.faces) {
+    const Index ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+    out.faces.push_back({f[0], ab, ca});
+    out.faces.push_back({ab, f[1], bc});
+    out.faces.push_back({ca, bc, f[2]});
+    out.faces.push_back({ab, bc, ca});
+  }
+  return out;
 }
 
 CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -72,7 +73,13 @@ Vec3 working_origin(const std::vector<Vec3>& positions);
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& mesh);
 
 //! Connected component id per face (faces sharing an edge), and their count, from
-//! the mesh's triangle_adjacency().
-Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::vector<Index>& component);
+//! the mesh's triangle_adjacency(); with `joined`, only neighbours f, g for which
+//! joined(f, g) holds are in the same component.
+Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::vector<Index>& component,
+                      const std::function<bool(Index, Index)>& joined = {});
+
+//! Every triangle split into four at its edges' midpoints (the same surface, four times
+//! the triangles): how the benchmarks and tests make a large mesh of a shared one.
+TriMesh split_in_four(const TriMesh& mesh);
 
 }  // namespace qs

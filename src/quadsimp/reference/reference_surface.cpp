@@ -52,6 +52,36 @@ bool closest_callback(RTCPointQueryFunctionArguments* args) {
   return true;
 }
 
+// Scans fold the odd patch of triangles over onto the surface (a Z-fold: three layers,
+// the middle one facing the other way; the armadillo has 17 single triangles so,
+// glmark2's bunny 2). Such a patch is bounded all round by edges that turn back by
+// more than 120 degrees and is small: under 1e-4 of its connected piece's area. A
+// sheet with a sharp rim (two sides alike in area) is not one. Marked: the patch and
+// every triangle touching it, where the layers meet and the normals point both ways.
+std::vector<char> folded_flaps(const TriMesh& m, const std::vector<std::array<Index, 3>>& adjacency,
+                               const std::vector<Vec3>& normals) {
+  constexpr double kFoldCos = -0.5, kFlapShare = 1e-4;
+  std::vector<Index> piece, patch;
+  const Index pieces = face_components(adjacency, piece);
+  const Index patches =
+      face_components(adjacency, patch, [&](Index f, Index g) { return normals[f].dot(normals[g]) >= kFoldCos; });
+  std::vector<char> flap(normals.size(), 0);
+  if (patches == pieces) return flap;
+  std::vector<double> piece_area(pieces, 0.0), patch_area(patches, 0.0);
+  for (Index f = 0; f < m.n_faces(); ++f) {
+    const auto& t = m.faces[f];
+    const double a = (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]).norm();
+    piece_area[piece[f]] += a, patch_area[patch[f]] += a;
+  }
+  std::vector<char> at_flap(m.n_vertices(), 0);
+  for (Index f = 0; f < m.n_faces(); ++f)
+    if (patch_area[patch[f]] < kFlapShare * piece_area[piece[f]])
+      for (Index v : m.faces[f]) at_flap[v] = 1;
+  for (Index f = 0; f < m.n_faces(); ++f)
+    for (Index v : m.faces[f]) flap[f] = flap[f] || at_flap[v];
+  return flap;
+}
+
 }  // namespace
 
 Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double& u, double& v) {
@@ -107,6 +137,7 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   for (Vec3& n : vertex_normals_) n.normalize();
   mean_edge_ = mesh_.n_faces() ? edge_sum / (3.0 * mesh_.n_faces()) : 0.0;
   adjacency_ = triangle_adjacency(mesh_);
+  flap_ = folded_flaps(mesh_, adjacency_, normals_);
   border_out_.assign(mesh_.n_vertices(), kNone);
   border_in_.assign(mesh_.n_vertices(), kNone);
   for (Index f = 0; f < mesh_.n_faces(); ++f)

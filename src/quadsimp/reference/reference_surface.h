@@ -35,6 +35,10 @@ class ReferenceSurface {
   double mean_edge_length() const { return mean_edge_; }
   //! Unit normal of triangle f.
   const Vec3& face_normal(Index f) const { return normals_[f]; }
+  //! Whether triangle f is part of, or touches, a small patch folded over onto the
+  //! surface (a scan defect: bounded all round by edges turning back by over 120
+  //! degrees), where the surface's orientation says little.
+  bool is_flap(Index f) const { return flap_[f] != 0; }
 
   //! Nearest point hit by the line p + t*dir, |t| <= max_dist, whose triangle normal
   //! agrees with dir (dot > 0). Falls back to the closest point within max_dist with
@@ -73,6 +77,7 @@ class ReferenceSurface {
   TriMesh mesh_;
   std::vector<Vec3> normals_, vertex_normals_;
   std::vector<std::array<Index, 3>> adjacency_;  // for project_near()
+  std::vector<char> flap_;
   // Per vertex, the border edge leaving it and the one arriving at it (3 * triangle +
   // corner, the edge running from that corner to the next), or kNone.
   std::vector<Index> border_out_, border_in_;
