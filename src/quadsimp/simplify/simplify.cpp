@@ -349,7 +349,7 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
     return for_each_face_after_collapse(m_, f, k, p, [&](Index g, const Vec3* q) { return shape_ok(g, q, p_normal); });
   };
   if (m_.is_border_vertex(a) || m_.is_border_vertex(c)) {
-    foot = ref_.closest(collapse_position(m_, f, k));  // the border end is on M0 already
+    foot = ref_.closest_within(collapse_position(m_, f, k), 0.0);  // the border end is on M0 already
     pos = foot.point;
     return foot.found() && shape_after(pos, ref_.normal_at(foot));
   }
@@ -363,7 +363,7 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
     return true;
   }
   for (Index end : {a, c}) {
-    foot = ref_.closest(m_.position(end));
+    foot = ref_.closest_within(m_.position(end), 0.0);
     if (foot.found() && shape_after(foot.point, ref_.normal_at(foot))) {
       pos = foot.point;
       return true;
@@ -713,7 +713,7 @@ bool Simplifier::remove_border_vertex(Index b) {
     // Unchecked, a corner that kept its place took in its border neighbours one after
     // another: the corner of a grid of 200 x 4 skinny cells ended with valence 14.
     if (ear_exceeds_valence(ear, k)) return false;
-    const SurfacePoint foot = ref_.closest(keep);
+    const SurfacePoint foot = ref_.closest_within(keep, 0.0);  // a vertex's place
     if (!can_collapse_border_ear(m_, ear, k) || !foot.found() ||
         !for_each_face_after_collapse(m_, ear, (k + 1) & 3u, keep,
                               [&](Index g, const Vec3* q) { return shape_ok(g, q, ref_.normal_at(foot)); }))
@@ -864,14 +864,14 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
     const Vec3 mid = 0.5 * (m_.position(l) + m_.position(r));
     SurfacePoint foot;
     if (bl != br) {
-      foot = ref_.closest(m_.position(bl ? l : r));
+      foot = ref_.closest_within(m_.position(bl ? l : r), 0.0);
     } else if (bl) {
       Vec3 p;
       if (!border_merge_point(l, r, mid, p)) {
         ++rep_.refused_topology;
         return false;
       }
-      foot = ref_.closest(p);
+      foot = ref_.closest_within(p, std::min((p - m_.position(l)).norm(), (p - m_.position(r)).norm()));
     } else {
       foot = ref_.project_near(foot_face_[l], mid, m_.vertex_area_normal(l) + m_.vertex_area_normal(r),
                                2 * (m_.position(l) - m_.position(r)).norm());
@@ -963,7 +963,8 @@ bool Simplifier::relocate_corner(Index f) {
     if (m_.is_border_vertex(v)) continue;
     const Vec3 others = (m_.position(c[(i + 1) % 4]) + m_.position(c[(i + 2) % 4]) + m_.position(c[(i + 3) % 4])) / 3;
     for (double t : {0.5, 0.25, 0.125}) {
-      const SurfacePoint foot = ref_.closest(m_.position(v) + t * (others - m_.position(v)));
+      const Vec3 step = t * (others - m_.position(v));
+      const SurfacePoint foot = ref_.closest_within(m_.position(v) + step, step.norm());
       if (!foot.found()) continue;
       const double after = cos_with(v, foot.point);
       if (after <= best || !moved_faces_ok(v, foot.point)) continue;
