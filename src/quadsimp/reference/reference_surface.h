@@ -58,7 +58,8 @@ class ReferenceSurface {
                        const Vec3& normal = Vec3::Zero()) const;
   //! The closest point at any distance, for a p known to have a point of M0 within
   //! `hint` (a vertex's own position, a face's corner): the search starts bounded by
-  //! it, which prunes most of the BVH, and widens only if that finds nothing.
+  //! it, which prunes most of the BVH, and widens only if that finds nothing. Any hint
+  //! gives the same point as closest(p); a tight one only makes it faster.
   SurfacePoint closest_within(const Vec3& p, double hint) const;
 
   //! Closest point to p on M0's border, searched along the border within `reach`
