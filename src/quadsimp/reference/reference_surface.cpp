@@ -59,20 +59,18 @@ bool closest_callback(RTCPointQueryFunctionArguments* args) {
 // sheet with a sharp rim (two sides alike in area) is not one. Marked: the patch and
 // every triangle touching it, where the layers meet and the normals point both ways.
 std::vector<char> folded_flaps(const TriMesh& m, const std::vector<std::array<Index, 3>>& adjacency,
-                               const std::vector<Vec3>& normals) {
+                               const std::vector<Vec3>& normals, const std::vector<double>& area) {
   constexpr double kFoldCos = -0.5, kFlapShare = 1e-4;
-  std::vector<Index> piece, patch;
-  const Index pieces = face_components(adjacency, piece);
-  const Index patches =
-      face_components(adjacency, patch, [&](Index f, Index g) { return normals[f].dot(normals[g]) >= kFoldCos; });
+  const auto joined = [&](Index f, Index g) { return normals[f].dot(normals[g]) >= kFoldCos; };
   std::vector<char> flap(normals.size(), 0);
-  if (patches == pieces) return flap;
+  bool folds = false;  // most meshes have no edge turning back: no components to find
+  for (Index f = 0; f < m.n_faces() && !folds; ++f)
+    for (Index g : adjacency[f]) folds = folds || (g != kNone && !joined(f, g));
+  if (!folds) return flap;
+  std::vector<Index> piece, patch;
+  const Index pieces = face_components(adjacency, piece), patches = face_components(adjacency, patch, joined);
   std::vector<double> piece_area(pieces, 0.0), patch_area(patches, 0.0);
-  for (Index f = 0; f < m.n_faces(); ++f) {
-    const auto& t = m.faces[f];
-    const double a = (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]).norm();
-    piece_area[piece[f]] += a, patch_area[patch[f]] += a;
-  }
+  for (Index f = 0; f < m.n_faces(); ++f) piece_area[piece[f]] += area[f], patch_area[patch[f]] += area[f];
   std::vector<char> at_flap(m.n_vertices(), 0);
   for (Index f = 0; f < m.n_faces(); ++f)
     if (patch_area[patch[f]] < kFlapShare * piece_area[piece[f]])
@@ -123,12 +121,14 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   const auto& P = mesh_.positions;
   diagonal_ = qs::bbox_diagonal(P);
   normals_.resize(mesh_.n_faces());
+  std::vector<double> area(mesh_.n_faces());  // twice the area: only compared, for the flaps
   vertex_normals_.assign(mesh_.n_vertices(), Vec3::Zero());
   double edge_sum = 0;
   for (Index f = 0; f < mesh_.n_faces(); ++f) {
     const auto& t = mesh_.faces[f];
     const Vec3 n = (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]);
     normals_[f] = n.normalized();
+    area[f] = n.norm();
     for (int k = 0; k < 3; ++k) {
       vertex_normals_[t[k]] += n;
       edge_sum += (P[t[k]] - P[t[(k + 1) % 3]]).norm();
@@ -137,7 +137,7 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   for (Vec3& n : vertex_normals_) n.normalize();
   mean_edge_ = mesh_.n_faces() ? edge_sum / (3.0 * mesh_.n_faces()) : 0.0;
   adjacency_ = triangle_adjacency(mesh_);
-  flap_ = folded_flaps(mesh_, adjacency_, normals_);
+  flap_ = folded_flaps(mesh_, adjacency_, normals_, area);
   border_out_.assign(mesh_.n_vertices(), kNone);
   border_in_.assign(mesh_.n_vertices(), kNone);
   for (Index f = 0; f < mesh_.n_faces(); ++f)
