@@ -414,6 +414,18 @@ bool collapse_chord_through(QuadMesh& m, Index a, Index b, Chord* out = nullptr)
   return true;
 }
 
+// After a chord of `faces` quads and `pairs` crossed edges was collapsed: a valid mesh of
+// `faces_left` quads and `vertices_left` vertices with no shared diagonal.
+void expect_chord_collapsed(const QuadMesh& m, const Chord& c, std::size_t faces, Index pairs, Index faces_left,
+                            Index vertices_left) {
+  EXPECT_EQ(c.faces.size(), faces);
+  EXPECT_EQ(c.pairs(), pairs);
+  validate(m);
+  EXPECT_EQ(m.n_faces(), faces_left);
+  EXPECT_EQ(m.n_vertices(), vertices_left);
+  EXPECT_EQ(count_shared_diagonals(m), 0u);
+}
+
 }  // namespace
 
 // Tube of 4 x 6 quads: vertex (i, j) is 4 j + i, ring j at z = j.
@@ -428,10 +440,7 @@ TEST(ChordCollapse, ring_comes_out_of_a_tube) {
     EXPECT_EQ(std::abs(int(c.left[i] / 4) - int(c.right[i] / 4)), 1);
   ASSERT_TRUE(can_collapse_chord(m, c));
   collapse_chord(m, c, chord_midpoints(m, c));
-  validate(m);
-  EXPECT_EQ(m.n_faces(), 20u);
-  EXPECT_EQ(m.n_vertices(), 24u);
-  EXPECT_EQ(count_shared_diagonals(m), 0u);
+  expect_chord_collapsed(m, c, 4, 4, 20, 24);
   for (Index v : c.left) {
     EXPECT_EQ(m.valence(v), 4);
     EXPECT_NEAR(m.position(v).z(), 2.5, 1e-12);
@@ -440,10 +449,7 @@ TEST(ChordCollapse, ring_comes_out_of_a_tube) {
   // every ring, 4 around -> 3; a second one would leave quads sharing two edges.
   ASSERT_TRUE(collapse_chord_through(m, 0, 1, &c));
   EXPECT_FALSE(c.closed);
-  EXPECT_EQ(c.faces.size(), 5u);
-  validate(m);
-  EXPECT_EQ(m.n_faces(), 15u);
-  EXPECT_EQ(count_shared_diagonals(m), 0u);
+  expect_chord_collapsed(m, c, 5, 6, 15, 18);
   const Index left = c.left[0];
   Index other = kNone;
   m.for_each_outgoing(left, [&](Index h) {
@@ -463,11 +469,7 @@ TEST(ChordCollapse, strip_loses_one_quad_across_not_along) {
   EXPECT_FALSE(can_collapse_chord(m, along)) << "every rung joins two border vertices: a pinch";
   Chord across;
   ASSERT_TRUE(collapse_chord_through(m, 2, 3, &across));
-  EXPECT_EQ(across.faces.size(), 1u);
-  EXPECT_EQ(across.pairs(), 2u);
-  validate(m);
-  EXPECT_EQ(m.n_faces(), 4u);
-  EXPECT_EQ(m.n_vertices(), 10u);
+  expect_chord_collapsed(m, across, 1, 2, 4, 10);
   EXPECT_TRUE(m.is_border_vertex(2));
   EXPECT_EQ(m.valence(2), 3);
 }
@@ -476,12 +478,7 @@ TEST(ChordCollapse, grid_column_and_refusals) {
   QuadMesh g = quad_grid(3, 3);
   Chord c;
   ASSERT_TRUE(collapse_chord_through(g, 1, 2, &c));
-  EXPECT_EQ(c.faces.size(), 3u);
-  EXPECT_EQ(c.pairs(), 4u);
-  validate(g);
-  EXPECT_EQ(g.n_faces(), 6u);
-  EXPECT_EQ(g.n_vertices(), 12u);
-  EXPECT_EQ(count_shared_diagonals(g), 0u);
+  expect_chord_collapsed(g, c, 3, 4, 6, 12);
 
   // 3 x 3 minus its centre: the chord through the bottom row crosses two edges from the
   // outer border to the hole's; merging their ends would join the two borders into one
