@@ -276,3 +276,32 @@ TEST(Adaptive, faces_are_smaller_around_a_bump) {
   EXPECT_GT(quality.regular_percent, 75.0);
   EXPECT_GT(quality.homeometry_min, 0.01);
 }
+
+TEST(Adaptive, auto_halt_smooths_lightly_until_near_the_predicted_count) {
+  // Automatic halting has no target; the count predicted from the fitmaps stands in for
+  // it, so the early collapses get one light pass as in runs with a target. A sphere
+  // with bumps all over.
+  TriMesh t = tri_sphere(60, 90);
+  for (Vec3& p : t.positions) p *= 1 + 0.04 * std::sin(12 * p.x()) * std::cos(10 * p.y()) * std::sin(9 * p.z());
+  const ReferenceSurface ref(t);
+  const Fitmaps f = compute_fitmaps(t);
+  auto run = [&](double fine_phase, QuadMesh& q) {
+    q = tri_to_quad(t);
+    SimplifyOptions opt;
+    opt.adaptive = true;
+    opt.fitmaps = &f;
+    opt.fine_phase = fine_phase;
+    const SimplifyReport r = simplify(q, ref, opt);
+    validate(q);
+    return r;
+  };
+  QuadMesh light, full;
+  const SimplifyReport a = run(2.0, light), b = run(0.0, full);
+  // Measured: 10 predicted; 10 quads halted with the light passes, 16 without; the
+  // smoothing visited 102K against 658K vertices.
+  for (const SimplifyReport* r : {&a, &b}) {
+    EXPECT_GT(r->predicted_faces, 0.5 * double(r->faces));
+    EXPECT_LT(r->predicted_faces, 2.0 * double(r->faces));
+  }
+  EXPECT_LT(a.relaxations, b.relaxations / 3);
+}

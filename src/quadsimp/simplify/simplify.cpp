@@ -109,6 +109,7 @@ class Simplifier {
   // On the scans the quantiles are within 1.5x of each other and this never binds.
   double target_size(double s) const { return std::clamp(s_mid_ / std::max(clamped_s(s), 1e-30), 0.5, 2.0); }
   double blocked_share();
+  double predicted_halt() const;
   // Whether two corners or more have their feet on or next to a folded-over patch of M0.
   // With one (the faces around a fold) the other three still say where M0 faces. "Any
   // corner" changed the armadillo's runs (17 single-triangle flaps): at 1,806 quads its
@@ -156,6 +157,7 @@ class Simplifier {
   double s_lo_ = 0, s_hi_ = std::numeric_limits<double>::infinity(), s_mid_ = 1;
   std::vector<double> size_;
   double size_mean_ = 1;
+  double fine_above_ = std::numeric_limits<double>::infinity();  // the fine phase runs above this face count
   std::uint32_t stamp_ = 0;
   std::vector<Entry> heap_;
   std::vector<Index> region_faces_, region_verts_, work_, cand_, border_verts_;
@@ -423,6 +425,43 @@ void Simplifier::update_mu() {
   for (Index v = 0; v < m_.vertex_capacity(); ++v)
     if (m_.is_vertex_live(v)) sum += size_[v], ++n;
   size_mean_ = n ? sum / n : 1.0;
+}
+
+// Where automatic halting will stop, predicted from the fitmaps alone. Faces grow in the
+// order of their key |d| F_S, so at key level K a face at p has diagonal K / F_S(p), and
+// its radius passes F_M(p) / m_factor once K > 2 F_M F_S / m_factor. The halt comes at the
+// level where those places cover the halting share of M0; faces of diagonal d cover d^2/2
+// each, so the count is the sum over M0 of 2 dA (F_S / K)^2; 0 if there is nothing to go
+// by. Against the counts the datasets and re-rounded copies of them halted at: from 0.42
+// (pensatore) to 1.47 (moai) of the actual count (bench/RESULTS.md).
+double Simplifier::predicted_halt() const {
+  const TriMesh& t = ref_.mesh();
+  struct Level {
+    double level, area, s;
+  };
+  std::vector<Level> levels;
+  levels.reserve(t.faces.size());
+  double total = 0;
+  for (const auto& f : t.faces) {
+    const Vec3& a = t.positions[f[0]];
+    const double area = 0.5 * (t.positions[f[1]] - a).cross(t.positions[f[2]] - a).norm();
+    double fs = 0, fm = 0;
+    for (Index v : f) fs += opt_.fitmaps->s[v] / 3.0, fm += opt_.fitmaps->m[v] / 3.0;
+    fs = clamped_s(fs);
+    levels.push_back({2 * fm * fs / opt_.m_factor, area, fs});
+    total += area;
+  }
+  std::sort(levels.begin(), levels.end(), [](const Level& x, const Level& y) { return x.level < y.level; });
+  double covered = 0, k = 0;
+  for (const Level& l : levels) {
+    covered += l.area;
+    k = l.level;
+    if (covered >= opt_.halt_share * total) break;
+  }
+  if (!(k > 0)) return 0;
+  double faces = 0;
+  for (const Level& l : levels) faces += 2 * l.area * (l.s / k) * (l.s / k);
+  return faces;
 }
 
 // Share of the surface still blocked by the M-fitmap; drops the entries of faces that
@@ -774,8 +813,7 @@ void Simplifier::after_change(const Index* first, const Index* last) {
   rep_.singlets += cc.singlets;
   for (const Index* x = first; x != last; ++x) add_faces_around(*x, region_faces_);
   if (opt_.rotations) rotate_in_region();
-  const bool fine =  // see SimplifyOptions::fine_phase
-      opt_.fine_phase > 0 && opt_.target_faces > 0 && m_.n_faces() > opt_.fine_phase * opt_.target_faces;
+  const bool fine = m_.n_faces() > fine_above_;  // see SimplifyOptions::fine_phase
   smooth_region(fine ? 1 : opt_.smoothing_sweeps);
   for (int pass = 1; pass < (fine ? 1 : opt_.passes); ++pass) {
     // Smoothing moved the zone: rotations the fold and convexity checks refused may
@@ -1055,6 +1093,18 @@ SimplifyReport Simplifier::run() {
   rebuild_heap();
 
   const Index target = opt_.target_faces;
+  if (target == 0 && opt_.adaptive) rep_.predicted_faces = predicted_halt();
+  if (opt_.fine_phase > 0) {
+    // Automatic halting has no target: the predicted count stands in for it, times a
+    // margin. The predictions were at least 0.42 of the actual counts, so the last
+    // halving gets the full passes. With 1.6 the pensatore's halving did not, and its
+    // regular share fell (bench/RESULTS.md).
+    constexpr double kMargin = 3.0;
+    if (target > 0)
+      fine_above_ = opt_.fine_phase * target;
+    else if (rep_.predicted_faces > 0)
+      fine_above_ = opt_.fine_phase * kMargin * rep_.predicted_faces;
+  }
   const Index span = rep_.initial_faces > target ? rep_.initial_faces - target : 1;
   Index next_mu = 0;
   // Diagonal collapses; once none is left above the target, chords (collapse_chords()).

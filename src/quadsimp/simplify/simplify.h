@@ -60,10 +60,12 @@ struct SimplifyOptions {
   //! (bunny.obj to 5K: 0.87 s against 0.74 s with one).
   int passes = 2;
   //! While the mesh has more than this many times the target faces, each collapse gets
-  //! one pass with one sweep (0: full passes throughout; no effect without a target).
-  //! Ours: those vertices are smoothed again by the many collapses still to come. On
-  //! Table 1 the mean share of regular vertices moved from 83.5% to 82.9% (no row below
-  //! 81%) and bunny.obj to 5K took about 40% less time (bench/RESULTS.md).
+  //! one pass with one sweep (0: full passes throughout). Automatic halting has no
+  //! target: there it is 3 times the count predicted from the fitmaps
+  //! (SimplifyReport::predicted_faces). Ours: those vertices are smoothed again by the
+  //! many collapses still to come. On Table 1 the mean share of regular vertices moved
+  //! from 83.5% to 82.9% (no row below 81%) and bunny.obj to 5K took about 40% less
+  //! time (bench/RESULTS.md).
   double fine_phase = 2.0;
   //! Spring-smoothing sweeps over the whole mesh before the first collapse. Ours: where
   //! the input is coarser than elsewhere, no collapse may reach a region before the
@@ -115,6 +117,9 @@ struct SimplifyReport {
   Index refused_topology = 0, refused_valence = 0, refused_geometry = 0, refused_fitmap = 0;
   //! Adaptive mode: share of the surface the M-fitmap blocked when the run ended.
   double blocked_share = 0;
+  //! Automatic halting: the halting count predicted from the fitmaps before the run
+  //! (0 otherwise, or with nothing to go by).
+  double predicted_faces = 0;
   Index refused() const { return refused_topology + refused_valence + refused_geometry + refused_fitmap; }
   bool cancelled = false;
   double seconds = 0;
