@@ -19,7 +19,7 @@ struct SimplifyArgs {
   unsigned faces = 0;
   bool adaptive = false, auto_halt = false, preserve_boundary = false, fast = false, fit_to_input = false, stats = false, json = false,
        quiet = false;
-  double tau = 0.05, m_factor = 1.0, halt_share = 0.05;
+  double tau = 0.05, m_factor = 1.0, halt_share = 0.15;
   unsigned samples = 1000000;
 };
 int run_simplify(const SimplifyArgs& args);

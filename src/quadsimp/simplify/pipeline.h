@@ -10,10 +10,10 @@ namespace qs {
 struct SimplifyParams {
   Index target_faces = 0;        //!< uniform: required; adaptive: optional
   bool adaptive = false;
-  bool auto_halt = false;        //!< adaptive: stop once the M-fitmap blocks halt_share
+  bool auto_halt = false;        //!< adaptive: stop once the M-fitmap blocks halt_share of the surface
   double tau = 0.05;             //!< M-fitmap tolerance
   double m_factor = 1.0;         //!< adaptive: face radius <= F_M / m_factor
-  double halt_share = 0.05;      //!< auto_halt: see SimplifyOptions::halt_share
+  double halt_share = 0.15;      //!< auto_halt: see SimplifyOptions::halt_share
   bool preserve_boundary = false;
   bool fast = false;             //!< one optimisation pass per collapse (the paper's loop)
   bool fit_to_input = false;     //!< afterwards, fit_to_surface(): vertices leave the input

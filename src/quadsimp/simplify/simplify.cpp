@@ -108,7 +108,7 @@ class Simplifier {
   // noise left the bump test with 71% regular vertices and 2.3x the RMS of a single mu.
   // On the scans the quantiles are within 1.5x of each other and this never binds.
   double target_size(double s) const { return std::clamp(s_mid_ / std::max(clamped_s(s), 1e-30), 0.5, 2.0); }
-  double blocked_share();
+  double blocked_share() const;
   double predicted_halt() const;
   // Whether two corners or more have their feet on or next to a folded-over patch of M0.
   // With one (the faces around a fold) the other three still say where M0 faces. "Any
@@ -167,17 +167,8 @@ class Simplifier {
   std::vector<SurfacePoint> chord_feet_;
   std::vector<std::size_t> edge_count_;  // per component, for update_mu()
   bool has_border_ = false;  // no operator makes a border where there was none
-  // Faces the M-fitmap refused to enlarge, with their version and area then: while a
-  // face keeps that version it is still blocked (see SimplifyOptions::halt_share).
-  struct Blocked {
-    Index face;
-    std::uint32_t version;
-    double area;
-  };
-  std::vector<Blocked> blocked_;
-  // blocked_share() at its last recount plus the share of the faces listed since: an
-  // upper bound that spares the recount while it stays under the halting share.
-  double blocked_bound_ = 0;
+  // Automatic halting: the face count at or below which blocked_share() is next measured.
+  Index next_scan_ = 0;
   double area_ = 0;  // of the mesh at the start
   bool refuse_folds_;  // opt_.refuse_folds, and on during unfold(): what every fold check reads
 };
@@ -429,12 +420,13 @@ void Simplifier::update_mu() {
 
 // Where automatic halting will stop, predicted from the fitmaps alone. Faces grow in the
 // order of their key |d| F_S, so at key level K a face at p has diagonal K / F_S(p), and
-// its radius passes F_M(p) / m_factor once K > 2 F_M F_S / m_factor. The halt comes at the
-// level where those places cover the halting share of M0; faces of diagonal d cover d^2/2
-// each, so the count is the sum over M0 of 2 dA (F_S / K)^2; 0 if there is nothing to go
-// by. Against the counts the datasets and re-rounded copies of them halted at: from 0.42
-// (pensatore) to 1.47 (moai) of the actual count (bench/RESULTS.md).
+// its radius passes F_M(p) / m_factor once K > 2 F_M F_S / m_factor. Take the level where
+// those places cover 5% of M0; faces of diagonal d cover d^2/2 each, so the count is the
+// sum over M0 of 2 dA (F_S / K)^2; 0 if there is nothing to go by. A rough guide, not a
+// rule: against the counts the datasets and re-rounded copies of them halt at, 0.44
+// (pensatore) to 1.17 (armadillo) of the actual count (bench/RESULTS.md).
 double Simplifier::predicted_halt() const {
+  constexpr double kShare = 0.05;
   const TriMesh& t = ref_.mesh();
   struct Level {
     double level, area, s;
@@ -456,7 +448,7 @@ double Simplifier::predicted_halt() const {
   for (const Level& l : levels) {
     covered += l.area;
     k = l.level;
-    if (covered >= opt_.halt_share * total) break;
+    if (covered >= kShare * total) break;
   }
   if (!(k > 0)) return 0;
   double faces = 0;
@@ -464,21 +456,30 @@ double Simplifier::predicted_halt() const {
   return faces;
 }
 
-// Share of the surface still blocked by the M-fitmap; drops the entries of faces that
-// died or changed since (and repeats: both diagonals of a face can be refused).
-double Simplifier::blocked_share() {
-  const std::uint32_t seen = ++stamp_;
+// Share of the surface where the M-fitmap blocks: faces whose every diagonal collapse
+// that the other checks allow it refuses (and at least one), by area, against the
+// mesh's area at the start. Measured afresh over all faces: a list of the refusals met in
+// the loop (the fifth to tenth stops' rule) drops a face whenever a neighbour's collapse
+// moves it, so its share was noisy and about a third of this one, and where it first
+// crossed its threshold was decided by rounding (bench/RESULTS.md).
+double Simplifier::blocked_share() const {
   double sum = 0;
-  std::size_t kept = 0;
-  for (const Blocked& b : blocked_) {
-    if (!m_.is_face_live(b.face) || version_[b.face] != b.version || face_mark_[b.face] == seen) continue;
-    face_mark_[b.face] = seen;
-    sum += b.area;
-    blocked_[kept++] = b;
+  for (Index f = 0; f < m_.face_capacity(); ++f) {
+    if (!m_.is_face_live(f)) continue;
+    bool refused = false, allowed = false;
+    for (Index k = 0; k < 2 && !allowed; ++k) {
+      if (!can_collapse_diagonal(m_, f, k) || touches_kept_border(f, k) || exceeds_valence(f, k)) continue;
+      Vec3 pos;
+      SurfacePoint foot;
+      if (!place(f, k, pos, foot)) continue;
+      if (m_fitmap_allows(f, k, pos))
+        allowed = true;
+      else
+        refused = true;
+    }
+    if (refused && !allowed) sum += 0.5 * m_.face_area_normal(f).norm();
   }
-  blocked_.resize(kept);
-  blocked_bound_ = area_ > 0 ? sum / area_ : 0.0;
-  return blocked_bound_;
+  return area_ > 0 ? sum / area_ : 0.0;
 }
 
 void Simplifier::add_faces_around(Index v, std::vector<Index>& faces) {
@@ -1096,7 +1097,7 @@ SimplifyReport Simplifier::run() {
   if (target == 0 && opt_.adaptive) rep_.predicted_faces = predicted_halt();
   if (opt_.fine_phase > 0) {
     // Automatic halting has no target: the predicted count stands in for it, times a
-    // margin. The predictions were at least 0.42 of the actual counts, so the last
+    // margin. The predictions were at least 0.44 of the actual counts, so the last
     // halving gets the full passes. With 1.6 the pensatore's halving did not, and its
     // regular share fell (bench/RESULTS.md).
     constexpr double kMargin = 3.0;
@@ -1105,6 +1106,7 @@ SimplifyReport Simplifier::run() {
     else if (rep_.predicted_faces > 0)
       fine_above_ = opt_.fine_phase * kMargin * rep_.predicted_faces;
   }
+  next_scan_ = std::isfinite(fine_above_) ? Index(std::min(fine_above_, double(m_.n_faces()))) : m_.n_faces();
   const Index span = rep_.initial_faces > target ? rep_.initial_faces - target : 1;
   Index next_mu = 0;
   // Diagonal collapses; once none is left above the target, chords (collapse_chords()).
@@ -1131,17 +1133,17 @@ SimplifyReport Simplifier::run() {
       }
       if (opt_.adaptive && !m_fitmap_allows(e.face, e.k, pos)) {
         ++rep_.refused_fitmap;
-        const double a = 0.5 * m_.face_area_normal(e.face).norm();
-        blocked_.push_back({e.face, version_[e.face], a});
-        blocked_bound_ += area_ > 0 ? a / area_ : 0.0;
-        // Stop at the refusal that takes the share over. Checking only every 16th refusal
-        // ran past it where few faces are blocked: the moai went on from 38 quads to 34.
-        if (target == 0 && blocked_bound_ >= opt_.halt_share && blocked_share() >= opt_.halt_share) break;
-        // Runs with a target never recount above: prune the stale entries now and then.
-        if (blocked_.size() > 2 * std::size_t(m_.n_faces()) + 1024) blocked_share();
         continue;
       }
       cycle(e.face, e.k, pos, foot);
+      if (target == 0 && opt_.halt_share < 1 && m_.n_faces() <= next_scan_) {
+        // The share grows smoothly as the faces grow: measured again after a step of the
+        // faces that shrinks to 1% as it nears the halting share (about 15 measures a run).
+        rep_.blocked_share = blocked_share();
+        if (rep_.blocked_share >= opt_.halt_share) break;
+        const double step = std::clamp(0.25 * (1 - rep_.blocked_share / opt_.halt_share), 0.01, 0.25);
+        next_scan_ = Index(double(m_.n_faces()) * (1 - step));
+      }
       if (has_border_ && opt_.coarsen_border && !opt_.preserve_boundary && rep_.collapses % 64 == 0)
         coarsen_border();
       if (rep_.collapses >= next_mu) {
@@ -1166,7 +1168,7 @@ SimplifyReport Simplifier::run() {
     }
     if (!opt_.chord_collapses || target == 0 || m_.n_faces() <= target || rep_.cancelled || !collapse_chords()) break;
   }
-  if (opt_.adaptive) rep_.blocked_share = blocked_share();
+  if (opt_.adaptive && !(target == 0 && rep_.blocked_share >= opt_.halt_share)) rep_.blocked_share = blocked_share();
   if (opt_.unfold && !opt_.refuse_folds && !rep_.cancelled) unfold();
   m_.compact();
   rep_.faces = m_.n_faces();
