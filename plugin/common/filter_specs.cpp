@@ -23,7 +23,7 @@ const std::vector<FilterSpec>& filter_specs() {
        "stops at the target number of faces. <b>Adaptive</b> mode weights diagonals by the S-fitmap (small "
        "faces where the surface is curved), refuses collapses that would make a face larger than the M-fitmap "
        "allows (so that the result stays projectable onto the input), and can stop by itself once the M-fitmap "
-       "blocks 5% of the surface. <b>Fit vertices to the input</b> then moves the vertices off the input, along "
+       "blocks 15% of the surface. <b>Fit vertices to the input</b> then moves the vertices off the input, along "
        "their normals, so that the quads lie closer to it. <br>The result goes to a new layer; the input layer is not changed. Quads are stored "
        "the MeshLab way, as triangle pairs with a faux shared edge: save as PLY with per-face flags, or as OBJ/OFF "
        "with polygons, to keep them." + kCitation},
@@ -63,8 +63,9 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "Stop when the mesh has at most this many quads. Required in uniform mode; in adaptive mode it is "
        "ignored when automatic halting is on. Default: a tenth of the input's quads."},
       {kSimplify, "AutoHalt", "Automatic halting (adaptive)", ParamKind::Bool, 0, 0, 1,
-       "Adaptive mode only: ignore the target and stop once the collapses the M-fitmap refuses cover 5% of the "
-       "surface (the paper runs until none is allowed, which coarsens the rest far past its error balance)."},
+       "Adaptive mode only: ignore the target and stop once the faces whose collapses the M-fitmap refuses cover "
+       "15% of the surface (the paper runs until none is allowed, which coarsens the rest far past its error "
+       "balance)."},
       {kSimplify, "Tau", "Fitmap tolerance tau", ParamKind::Float, 0.05, 0.001, 0.5,
        "Adaptive mode: share of a neighbourhood allowed to face against its fitted plane in the M-fitmap "
        "(0.05 in the paper). Larger values allow larger faces."},
