@@ -36,8 +36,8 @@ struct SimplifyOptions {
   double s_percentiles = 0.2;
   //! Automatic halting (adaptive mode without a face target): stop once the faces whose
   //! every diagonal collapse the other checks allow is refused by the M-fitmap cover
-  //! this share of the surface (measured over all faces, at steps of the face count that
-  //! shrink to 1% near it). 1 runs on until no feasible collapse remains (the paper's
+  //! this share of the surface more than before the first collapse (measured over all
+  //! faces, at steps of the face count that shrink to 1% near it). 1 runs on until no feasible collapse remains (the paper's
   //! rule). Ours: with the paper's rule the blocked parts stay put while the rest keeps
   //! coarsening, far past what the fitmap's error balance asks (bunny: 340 quads, RMS
   //! 2.4x the uniform result at that count). With 0.15 the bunny, gargoyle and armadillo
