@@ -76,6 +76,17 @@ TEST(Simplify, sphere_reaches_target) {
   EXPECT_EQ(count_components(c.quads), 1u);
 }
 
+TEST(Simplify, uniform_without_a_target_runs_until_nothing_collapses) {
+  // target_faces 0 is "no count limit" in either mode; automatic halting, with its
+  // M-fitmap measures, is adaptive only (uniform mode has no fitmaps).
+  Case c = prepare(tri_sphere(20, 30));
+  const ReferenceSurface ref(c.tri);
+  const SimplifyReport r = simplify(c.quads, ref, SimplifyOptions{});
+  validate(c.quads);
+  EXPECT_GT(r.collapses, 0u);
+  EXPECT_LT(c.quads.n_faces(), 20u);
+}
+
 TEST(Simplify, torus_reaches_target) {
   Case c = prepare(tri_torus(80, 40));
   const ReferenceSurface ref(c.tri);

@@ -167,9 +167,6 @@ class Simplifier {
   std::vector<SurfacePoint> chord_feet_;
   std::vector<std::size_t> edge_count_;  // per component, for update_mu()
   bool has_border_ = false;  // no operator makes a border where there was none
-  // Automatic halting: the face count at or below which blocked_share() is next measured.
-  Index next_scan_ = 0;
-  double base_share_ = 0;  // blocked_share() before the first collapse
   double area_ = 0;  // of the mesh at the start
   bool refuse_folds_;  // opt_.refuse_folds, and on during unfold(): what every fold check reads
 };
@@ -1107,12 +1104,16 @@ SimplifyReport Simplifier::run() {
     else if (rep_.predicted_faces > 0)
       fine_above_ = opt_.fine_phase * kMargin * rep_.predicted_faces;
   }
-  next_scan_ = std::isfinite(fine_above_) ? Index(std::min(fine_above_, double(m_.n_faces()))) : m_.n_faces();
+  // Automatic halting measures the blocked share (the paper's rule, halt_share 1, runs
+  // until nothing is left instead); `next_scan` is the face count of the next measure.
+  const bool measure = target == 0 && opt_.adaptive && opt_.halt_share < 1;
+  bool halted = false;
+  Index next_scan = std::isfinite(fine_above_) ? Index(std::min(fine_above_, double(m_.n_faces()))) : m_.n_faces();
   // Where the input's own faces already reach F_M (a thin rim, noise) nothing will ever
   // coarsen; only what the collapses add counts towards the halt. A pancake's rim was
   // blocked over more than 15% of its area from the start, and it stopped after one
   // collapse (bench/RESULTS.md).
-  if (target == 0 && opt_.adaptive && opt_.halt_share < 1) base_share_ = blocked_share();
+  const double base_share = measure ? blocked_share() : 0.0;
   const Index span = rep_.initial_faces > target ? rep_.initial_faces - target : 1;
   Index next_mu = 0;
   // Diagonal collapses; once none is left above the target, chords (collapse_chords()).
@@ -1142,14 +1143,14 @@ SimplifyReport Simplifier::run() {
         continue;
       }
       cycle(e.face, e.k, pos, foot);
-      if (target == 0 && opt_.halt_share < 1 && m_.n_faces() <= next_scan_) {
+      if (measure && m_.n_faces() <= next_scan) {
         // The share grows smoothly as the faces grow: measured again after a step of the
         // faces that shrinks to 1% as it nears the halting share (about 15 measures a run).
         rep_.blocked_share = blocked_share();
-        const double added = rep_.blocked_share - base_share_;
-        if (added >= opt_.halt_share) break;
+        const double added = rep_.blocked_share - base_share;
+        if ((halted = added >= opt_.halt_share)) break;
         const double step = std::clamp(0.25 * (1 - added / opt_.halt_share), 0.01, 0.25);
-        next_scan_ = Index(double(m_.n_faces()) * (1 - step));
+        next_scan = Index(double(m_.n_faces()) * (1 - step));
       }
       if (has_border_ && opt_.coarsen_border && !opt_.preserve_boundary && rep_.collapses % 64 == 0)
         coarsen_border();
@@ -1175,8 +1176,7 @@ SimplifyReport Simplifier::run() {
     }
     if (!opt_.chord_collapses || target == 0 || m_.n_faces() <= target || rep_.cancelled || !collapse_chords()) break;
   }
-  if (opt_.adaptive && !(target == 0 && rep_.blocked_share - base_share_ >= opt_.halt_share))
-    rep_.blocked_share = blocked_share();
+  if (opt_.adaptive && !halted) rep_.blocked_share = blocked_share();
   if (opt_.unfold && !opt_.refuse_folds && !rep_.cancelled) unfold();
   m_.compact();
   rep_.faces = m_.n_faces();
