@@ -12,7 +12,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from paper_table1 import PAPER, machine, parse_args, run  # noqa: E402
+from paper_table1 import PAPER, dataset, machine, parse_args, run, table_header  # noqa: E402
 
 ADAPTIVE = ["moai", "pensatore", "gargoyle", "bunny", "armadillo"]
 
@@ -24,15 +24,14 @@ def change(a, b):
 def main():
     args = parse_args(__doc__, list(PAPER) + ["armadillo"])
     print(f"Machine: {machine()}; distances sampled with {args.samples} points per surface plus vertices.\n")
-    print("| model | mode | #faces | RMS e-3 | Hausdorff e-3 | RMS in->out e-3 | RMS out->in e-3 | time s "
-          "| non-convex / flipped / folded |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    table_header("| model | mode | #faces | RMS e-3 | Hausdorff e-3 | RMS in->out e-3 | RMS out->in e-3 | time s "
+                 "| non-convex / flipped / folded |")
     runs = [(m, "uniform", row[0]) for m in args.models if m in PAPER for row in PAPER[m]]
     runs += [(m, "adaptive", 0) for m in ADAPTIVE if m in args.models]
     gains = []
     for model, mode, faces in runs:
-        mesh = os.path.join(args.datasets, model + ".ply")
-        if not os.path.exists(mesh):
+        mesh = dataset(args, model)
+        if not mesh:
             continue
         extra = ["--adaptive", "--auto-halt"] if mode == "adaptive" else []
         a = run(args.quadsimp, mesh, faces, args.samples, extra)

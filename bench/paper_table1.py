@@ -43,6 +43,18 @@ def run(quadsimp, mesh, faces, samples, extra=()):
         return json.loads(res.stdout.strip().splitlines()[-1])
 
 
+def table_header(header):
+    """Prints a markdown table's header row and the rule under it."""
+    print(header)
+    print("|" + "---|" * (header.count("|") - 1))
+
+
+def dataset(args, model):
+    """The model's PLY in the datasets folder, or None when it is not there."""
+    mesh = os.path.join(args.datasets, model + ".ply")
+    return mesh if os.path.exists(mesh) else None
+
+
 def machine():
     cpu = "unknown CPU"
     try:
@@ -74,13 +86,12 @@ def main():
 
     print(f"Machine: {machine()}; single-threaded simplification, distances sampled with "
           f"{args.samples} points per surface plus vertices.\n")
-    print("| model | input quads | #faces | time s (paper) | val max (paper) | reg % (paper) | reg % val-4 only "
-          "| homeo min (paper) | homeo max (paper) | Hausdorff e-3 | RMS e-3 | mean out->in e-3 (paper Dist) "
-          "| non-convex / flipped / folded |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    table_header("| model | input quads | #faces | time s (paper) | val max (paper) | reg % (paper) | reg % val-4 only "
+                 "| homeo min (paper) | homeo max (paper) | Hausdorff e-3 | RMS e-3 | mean out->in e-3 (paper Dist) "
+                 "| non-convex / flipped / folded |")
     for model in args.models:
-        mesh = os.path.join(args.datasets, model + ".ply")
-        if not os.path.exists(mesh):
+        mesh = dataset(args, model)
+        if not mesh:
             print(f"| {model} | - | - | not in {args.datasets} | | | | | | | | | |")
             continue
         for faces, t, val, reg, hmin, hmax, dist in PAPER[model]:

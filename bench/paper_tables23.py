@@ -21,7 +21,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from paper_table1 import machine, parse_args, run  # noqa: E402
+from paper_table1 import dataset, machine, parse_args, run, table_header  # noqa: E402
 
 # model -> (adaptive: faces, time, val, reg, hmin, hmax, dist; uniform: same)
 PAPER = {
@@ -60,12 +60,11 @@ def main():
     halted = {}
     for title, halting in tables:
         print(f"### {title}\n")
-        print(HEADER)
-        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+        table_header(HEADER)
         summary = []
         for model in args.models:
-            mesh = os.path.join(args.datasets, model + ".ply")
-            if not os.path.exists(mesh):
+            mesh = dataset(args, model)
+            if not mesh:
                 print(f"| {model} | - | not in the datasets | | | | | | | | | | |")
                 continue
             pa, pu = PAPER[model]
@@ -128,13 +127,12 @@ def rerounded(src, dst, seed):
 def draws(args):
     print(f"### Automatic halting on {args.draws} draws of each input: the file itself, then copies re-rounded "
           "(each coordinate moved by at most one float32 step)\n")
-    print("| model | halting counts (the file first) | adaptive RMS e-3: median (range) | uniform at the same counts "
-          "| adaptive lower by, per draw | median | projectability %: min, median | regular %: min, median "
-          "| max valence |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    table_header("| model | halting counts (the file first) | adaptive RMS e-3: median (range) "
+                 "| uniform at the same counts | adaptive lower by, per draw | median | projectability %: min, median "
+                 "| regular %: min, median | max valence |")
     for model in args.models:
-        mesh = os.path.join(args.datasets, model + ".ply")
-        if not os.path.exists(mesh):
+        mesh = dataset(args, model)
+        if not mesh:
             continue
         counts, a, u, gains, proj, reg, val = [], [], [], [], [], [], []
         with tempfile.TemporaryDirectory() as tmp:
@@ -162,13 +160,12 @@ def draws(args):
 
 def window(args, halted):
     print("### RMS around the automatic halting count: seven counts 2% apart, median of each mode\n")
-    print("| model | counts | uniform RMS e-3: median (range) | adaptive RMS e-3: median (range) "
-          "| adaptive lower by (medians) | single counts |")
-    print("|---|---|---|---|---|---|")
+    table_header("| model | counts | uniform RMS e-3: median (range) | adaptive RMS e-3: median (range) "
+                 "| adaptive lower by (medians) | single counts |")
     for model, faces in halted.items():
         if model not in ("bunny", "gargoyle", "rampart", "armadillo"):
             continue  # the models with a distance target
-        mesh = os.path.join(args.datasets, model + ".ply")
+        mesh = dataset(args, model)
         counts = [round(faces * (1 + 0.02 * i)) for i in range(-3, 4)]
         u = [run(args.quadsimp, mesh, n, args.samples)["rms_e3"] for n in counts]
         a = [run(args.quadsimp, mesh, n, args.samples, ["--adaptive"])["rms_e3"] for n in counts]
