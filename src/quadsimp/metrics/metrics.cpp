@@ -124,10 +124,7 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
     q.folded_faces += quad_folds(p[0], p[1], p[2], p[3]);
     if (ref) {
       const Vec3 n = quad_normal(p[0], p[1], p[2], p[3]);
-      const Vec3 centre = 0.25 * (p[0] + p[1] + p[2] + p[3]);
-      double corner = std::numeric_limits<double>::infinity();  // corners on M0 make a tight hint
-      for (const Vec3& x : p) corner = std::min(corner, (x - centre).norm());
-      const SurfacePoint s = ref->closest_within(centre, corner);
+      const SurfacePoint s = ref->closest_to_quad_centre(p);
       q.flipped_faces += s.found() && ref->normal_at(s).dot(n) < 0;
     }
   }

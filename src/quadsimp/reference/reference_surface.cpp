@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -241,6 +242,13 @@ SurfacePoint ReferenceSurface::closest_within(const Vec3& p, double hint) const 
   // diagonal, and float radii.
   const SurfacePoint s = closest(p, hint * (1 + 1e-6) + 1e-5 * diagonal_);
   return s.found() ? s : closest(p);
+}
+
+SurfacePoint ReferenceSurface::closest_to_quad_centre(const Vec3* q) const {
+  const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+  double corner2 = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4; ++i) corner2 = std::min(corner2, (q[i] - centre).squaredNorm());
+  return closest_within(centre, std::sqrt(corner2));
 }
 
 SurfacePoint ReferenceSurface::project(const Vec3& p, const Vec3& dir, double max_dist) const {

@@ -61,6 +61,9 @@ class ReferenceSurface {
   //! it, which prunes most of the BVH, and widens only if that finds nothing. Any hint
   //! gives the same point as closest(p); a tight one only makes it faster.
   SurfacePoint closest_within(const Vec3& p, double hint) const;
+  //! Closest point to the centre of quad q (four corners): closest_within() with the
+  //! nearest corner as hint, tight when the corners lie on M0.
+  SurfacePoint closest_to_quad_centre(const Vec3* q) const;
 
   //! Closest point to p on M0's border, searched along the border within `reach`
   //! (length along the border) of the border corners of triangle `start`; not found

@@ -101,6 +101,8 @@ class Simplifier {
   void rebuild_heap();
   double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n, Index& hint) const;
   double s_weight(Index f);
+  // Where a walk to f's centre starts: the triangle under it at its last key, else a corner's.
+  Index centre_hint(Index f) const { return centre_foot_[f] != kNone ? centre_foot_[f] : foot_face_[m_.vertex(f, 0)]; }
   // F_S as the priority and the sizing use it: clamped to [s_lo, s_hi].
   double clamped_s(double s) const { return std::clamp(s, s_lo_, s_hi_); }
   // Spring size relative to the rest: s_mid / F_S, and within [1/2, 2]. The quantile clamp
@@ -198,7 +200,7 @@ double norm_of_diagonal(const QuadMesh& m, Index f, Index k) {
 
 double Simplifier::s_weight(Index f) {
   Index& hint = centre_foot_[f];
-  if (hint == kNone) hint = foot_face_[m_.vertex(f, 0)];
+  hint = centre_hint(f);
   return clamped_s(sample_fitmap(opt_.fitmaps->s, m_.face_centroid(f), m_.face_area_normal(f), hint));
 }
 
@@ -261,10 +263,7 @@ bool Simplifier::follows_reference(const Vec3& n, const std::array<Index, 4>& co
   // at 1K, gargoyle at 2K with --fast). The check only refuses: the Table 1 outputs
   // did not change.
   if (lowest < 0 || lowest * lowest < 0.5 * n.squaredNorm()) {
-    const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
-    double corner2 = std::numeric_limits<double>::infinity();  // the corners lie on M0
-    for (int i = 0; i < 4; ++i) corner2 = std::min(corner2, (q[i] - centre).squaredNorm());
-    const SurfacePoint mid = ref_.closest_within(centre, std::sqrt(corner2));
+    const SurfacePoint mid = ref_.closest_to_quad_centre(q);
     if (mid.found() && ref_.normal_at(mid).dot(n) < 0) return false;
   }
   return true;
@@ -384,7 +383,7 @@ bool Simplifier::within_m_fitmap(Index g, const Vec3* q) const {
   const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
   double radius = 0;
   for (int i = 0; i < 4; ++i) radius = std::max(radius, (q[i] - centre).norm());
-  Index hint = centre_foot_[g] != kNone ? centre_foot_[g] : foot_face_[m_.vertex(g, 0)];
+  Index hint = centre_hint(g);
   const double fm = sample_fitmap(opt_.fitmaps->m, centre, quad_normal(q[0], q[1], q[2], q[3]), hint);
   return radius * opt_.m_factor <= fm;
 }
