@@ -50,14 +50,20 @@ TriMesh sphere_with_far_triangle(int rings, int segments) {
   return t;
 }
 
+// Adaptive mode driven by f.
+SimplifyOptions adaptive_options(const Fitmaps& f) {
+  SimplifyOptions opt;
+  opt.adaptive = true;
+  opt.fitmaps = &f;
+  return opt;
+}
+
 // Adaptive simplification of t (fitmaps computed on t).
 SimplifyReport simplify_adaptive(const TriMesh& t, QuadMesh& q, Index target = 0) {
   const ReferenceSurface ref(t);
   q = tri_to_quad(t);
   const Fitmaps f = compute_fitmaps(t);
-  SimplifyOptions opt;
-  opt.adaptive = true;
-  opt.fitmaps = &f;
+  SimplifyOptions opt = adaptive_options(f);
   opt.target_faces = target;
   SimplifyReport r = simplify(q, ref, opt);
   validate(q);
@@ -172,9 +178,7 @@ TEST(Adaptive, m_fitmap_refuses_collapses_that_grow_faces_past_it) {
   // F_M below the radius of every face now: no collapse may go through.
   const double tiny = 0.1 * ref.mean_edge_length();
   std::fill(f.m.begin(), f.m.end(), float(tiny));
-  SimplifyOptions opt;
-  opt.adaptive = true;
-  opt.fitmaps = &f;
+  SimplifyOptions opt = adaptive_options(f);
   const SimplifyReport r = simplify(q, ref, opt);
   EXPECT_EQ(r.collapses, 0u);
   EXPECT_GT(r.refused_fitmap, 0u);
@@ -202,9 +206,7 @@ TEST(Adaptive, auto_halt_stops_once_the_m_fitmap_blocks_its_share) {
     f.m[v] = float((3 + 2 * t.positions[v].z()) * ref.mean_edge_length());
   auto run = [&](double share, Index target, QuadMesh& q) {
     q = tri_to_quad(t);
-    SimplifyOptions opt;
-    opt.adaptive = true;
-    opt.fitmaps = &f;
+    SimplifyOptions opt = adaptive_options(f);
     opt.halt_share = share;
     opt.target_faces = target;
     opt.fine_phase = 0;  // the same smoothing with and without a target: the same run
@@ -241,9 +243,7 @@ TEST(Adaptive, auto_halt_counts_only_the_share_the_collapses_block) {
     f.m[v] = float(t.positions[v].z() > 0.6 ? 0.1 * mu : (3 + 2 * t.positions[v].z()) * mu);
   QuadMesh q = tri_to_quad(t);
   const Index before = q.n_faces();
-  SimplifyOptions opt;
-  opt.adaptive = true;
-  opt.fitmaps = &f;
+  SimplifyOptions opt = adaptive_options(f);
   opt.halt_share = 0.1;
   opt.fine_phase = 0;  // the share is measured from the first collapse on
   const SimplifyReport r = simplify(q, ref, opt);
@@ -309,9 +309,7 @@ TEST(Adaptive, auto_halt_smooths_lightly_until_near_the_predicted_count) {
   const Fitmaps f = compute_fitmaps(t);
   auto run = [&](double fine_phase, QuadMesh& q) {
     q = tri_to_quad(t);
-    SimplifyOptions opt;
-    opt.adaptive = true;
-    opt.fitmaps = &f;
+    SimplifyOptions opt = adaptive_options(f);
     opt.fine_phase = fine_phase;
     const SimplifyReport r = simplify(q, ref, opt);
     validate(q);
