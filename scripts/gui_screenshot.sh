@@ -37,9 +37,9 @@ sleep 2
 import -window root -crop 853x725+0+0 "$here/docs/meshlab_simplification_dialog.png"
 # Apply with the defaults, close the dialog, and show the new layer as a wireframe
 # (MeshLab hides faux edges there, so the quads show).
-xdotool mousemove 401 516 click 1   # Apply
+xdotool mousemove 401 600 click 1   # Apply
 sleep 6
-xdotool mousemove 138 516 click 1   # Close
+xdotool mousemove 138 600 click 1   # Close
 sleep 1
 xdotool mousemove 471 114 click 1   # hide the input layer
 sleep 1

@@ -23,7 +23,7 @@ const std::vector<FilterSpec>& filter_specs() {
        "stops at the target number of faces. <b>Adaptive</b> mode weights diagonals by the S-fitmap (small "
        "faces where the surface is curved), refuses collapses that would make a face larger than the M-fitmap "
        "allows (so that the result stays projectable onto the input), and can stop by itself once the M-fitmap "
-       "blocks 15% of the surface. <b>Fit vertices to the input</b> then moves the vertices off the input, along "
+       "blocks the halting share of the surface (15% by default). <b>Fit vertices to the input</b> then moves the vertices off the input, along "
        "their normals, so that the quads lie closer to it. <br>The result goes to a new layer; the input layer is not changed. Quads are stored "
        "the MeshLab way, as triangle pairs with a faux shared edge: save as PLY with per-face flags, or as OBJ/OFF "
        "with polygons, to keep them." + kCitation},
@@ -64,8 +64,13 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "ignored when automatic halting is on. Default: a tenth of the input's quads."},
       {kSimplify, "AutoHalt", "Automatic halting (adaptive)", ParamKind::Bool, 0, 0, 1,
        "Adaptive mode only: ignore the target and stop once the faces whose collapses the M-fitmap refuses cover "
-       "15% of the surface (the paper runs until none is allowed, which coarsens the rest far past its error "
-       "balance)."},
+       "the halting share of the surface (the paper runs until none is allowed, which coarsens the rest far past "
+       "its error balance)."},
+      {kSimplify, "HaltShare", "Halting share (automatic halting)", ParamKind::Float, 0.15, 0.001, 1,
+       "Automatic halting: the share of the surface the M-fitmap may block, beyond what it blocked before the "
+       "first collapse, before simplification stops (0.15: the bunny, gargoyle and armadillo stop near the "
+       "paper's counts). Smaller stops earlier, with more quads; 1 runs until no collapse is allowed, the "
+       "paper's rule."},
       {kSimplify, "Tau", "Fitmap tolerance tau", ParamKind::Float, 0.05, 0.001, 0.5,
        "Adaptive mode: share of a neighbourhood allowed to face against its fitted plane in the M-fitmap "
        "(0.05 in the paper). Larger values allow larger faces."},

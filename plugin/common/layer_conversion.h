@@ -95,6 +95,7 @@ SimplifyParams simplify_params_of(const ParameterList& params) {
   p.adaptive = params.getBool("Adaptive");
   p.auto_halt = params.getBool("AutoHalt");
   p.target_faces = p.adaptive && p.auto_halt ? 0 : Index(std::max(0, params.getInt("TargetFaceNum")));
+  p.halt_share = params.getFloat("HaltShare");
   p.tau = params.getFloat("Tau");
   p.preserve_boundary = params.getBool("PreserveBoundary");
   p.fast = params.getBool("Fast");

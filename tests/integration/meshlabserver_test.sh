@@ -5,7 +5,7 @@
 #    PLY saved with face flags (-m ff) reads back as a valid pure quad mesh with the
 #    target face count (within 1%);
 #  - the plugin and the CLI give the same result for the same input and parameters, in
-#    uniform mode and in adaptive mode with automatic halting;
+#    uniform mode and in adaptive mode with automatic halting (at two halting shares);
 #  - a point cloud makes the filter fail with our message, without crashing MeshLab.
 # Usage: meshlabserver_test.sh PLUGIN.so QUADSIMP_CLI REPO_DIR DATASETS_DIR
 set -euo pipefail
@@ -25,7 +25,8 @@ server -d "$work/dump.txt" || true
 for f in "Quad Mesh Simplification" "Convert to Pure Quad Mesh" "Compute Fitmaps" "Quad Mesh Quality"; do
   grep -q "section .* $f" "$work/dump.txt" || fail "filter '$f' missing from meshlabserver -d"
 done
-for p in "Adaptive (fitmaps)" "Target number of quads" "Automatic halting (adaptive)" "Fitmap tolerance tau" \
+for p in "Adaptive (fitmaps)" "Target number of quads" "Automatic halting (adaptive)" \
+         "Halting share (automatic halting)" "Fitmap tolerance tau" \
          "Preserve boundary" "Fast (one pass)" "Fit vertices to the input" "Reference mesh" "Distance samples"; do
   grep -q "$p" "$work/dump.txt" || fail "parameter '$p' missing from meshlabserver -d"
 done
@@ -96,6 +97,29 @@ for k in ("faces", "vertices", "max_valence", "regular_percent"):
     assert a[k] == b[k], (k, a[k], b[k])
 print("ok: adaptive, automatic halting: plugin and CLI stop at", a["faces"], "quads")
 PY
+fi
+
+# 3b'. A smaller halting share from a script: it stops where the CLI's does, earlier.
+if [ -f "$work/adaptive.json" ]; then
+  sed 's/name="HaltShare" type="RichFloat" value="[0-9.]*"/name="HaltShare" type="RichFloat" value="0.05"/' \
+    "$work/adaptive.mlx" >"$work/share.mlx"
+  if ! grep -q 'name="HaltShare" type="RichFloat" value="0.05"' "$work/share.mlx"; then
+    fail "share: no HaltShare in the script"
+  elif ! server -i "$bunny" -o "$work/share.ply" -m ff -s "$work/share.mlx" ||
+       ! "$cli" stats "$bunny" "$work/share.ply" --json --samples 50000 >"$work/share.json"; then
+    fail "share script failed on the bunny"; cat "$work/server.log"
+  else
+    "$cli" simplify "$bunny" "$work/cli_share.ply" -q --adaptive --auto-halt --halt-share 0.05 >/dev/null
+    "$cli" stats "$bunny" "$work/cli_share.ply" --json --samples 50000 >"$work/cli_share.json"
+    python3 - "$work/cli_share.json" "$work/share.json" "$work/adaptive.json" <<'PY' || fail "share: plugin and CLI differ"
+import json, sys
+a, b, default = (json.load(open(p)) for p in sys.argv[1:4])
+for k in ("faces", "vertices", "max_valence", "regular_percent"):
+    assert a[k] == b[k], (k, a[k], b[k])
+assert b["faces"] > default["faces"], (b["faces"], default["faces"])
+print("ok: halting share 0.05: plugin and CLI stop at", b["faces"], "quads, against", default["faces"])
+PY
+  fi
 fi
 
 # 3c. The fit to the input from a script: the same as the CLI's, and closer than without.

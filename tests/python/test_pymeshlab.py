@@ -198,6 +198,9 @@ def test_bad_input_raises_a_python_exception():
     with pytest.raises(pymeshlab.PyMeshLabException) as e:
         ms2.meshing_quad_mesh_simplification(adaptive=False, autohalt=True)
     assert "adaptive" in str(e.value)
+    with pytest.raises(pymeshlab.PyMeshLabException) as e:
+        ms2.meshing_quad_mesh_simplification(adaptive=True, autohalt=True, haltshare=0)
+    assert "halting share" in str(e.value)
 
 
 def plugin_and_cli(bunny_path, cli, tmp_path, filter_args, cli_args):
@@ -233,4 +236,9 @@ def test_fit_to_input_same_as_the_cli_and_closer(bunny_path, cli, tmp_path):
 
 def test_adaptive_automatic_halting_stops_where_the_cli_does(bunny_path, cli, tmp_path):
     # Same input, same fitmaps, same loop: the filter and the CLI halt at the same count.
-    plugin_and_cli(bunny_path, cli, tmp_path, {"adaptive": True, "autohalt": True}, ["--adaptive", "--auto-halt"])
+    q, _ = plugin_and_cli(bunny_path, cli, tmp_path, {"adaptive": True, "autohalt": True},
+                          ["--adaptive", "--auto-halt"])
+    # A smaller halting share stops earlier, as --halt-share does.
+    early, _ = plugin_and_cli(bunny_path, cli, tmp_path, {"adaptive": True, "autohalt": True, "haltshare": 0.05},
+                              ["--adaptive", "--auto-halt", "--halt-share", "0.05"])
+    assert early["faces"] > q["faces"]
