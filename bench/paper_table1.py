@@ -68,13 +68,13 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def parse_args(doc, models, draws=0):
-    """The options both table scripts take (--draws: Tables 2 and 3 only)."""
+def parse_args(doc, models, draws=0, samples=1000000):
+    """The options the bench scripts take (--draws: Tables 2 and 3 only)."""
     here = os.path.dirname(os.path.abspath(__file__))
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quadsimp", default=os.path.join(here, "..", "build", "src", "quadsimp"))
     ap.add_argument("--datasets", default=os.path.join(here, "..", "..", "shared", "datasets"))
-    ap.add_argument("--samples", type=int, default=1000000, help="distance samples per surface")
+    ap.add_argument("--samples", type=int, default=samples, help="distance samples per surface")
     ap.add_argument("--models", nargs="*", default=models)
     if draws:
         ap.add_argument("--draws", type=int, default=draws, help="automatic halting: the file and re-rounded copies")
