@@ -204,7 +204,7 @@ double norm_of_diagonal(const QuadMesh& m, Index f, Index k) {
 // [ours] F_S over the face rather than at its centre: the mean of the (clamped) values
 // under the centre and under the four corners. The error a face makes comes from all of
 // it, and F_S varies at the scale of M0's detail, so one point gives neighbouring faces
-// jittery keys. Twelve fixed-count runs (bunny, gargoyle, armadillo): RMS 19.9% below
+// jittery keys. Twelve fixed-count runs (bench/fixed_counts.py): RMS 19.9% below
 // uniform instead of 17.0%, 79.9% regular vertices instead of 77.8% (bench/RESULTS.md).
 double Simplifier::s_weight(Index f) {
   Index& hint = centre_foot_[f];
