@@ -105,9 +105,10 @@ class Simplifier {
   Index centre_hint(Index f) const { return centre_foot_[f] != kNone ? centre_foot_[f] : foot_face_[m_.vertex(f, 0)]; }
   // F_S as the priority and the sizing use it: clamped to [s_lo, s_hi].
   double clamped_s(double s) const { return std::clamp(s, s_lo_, s_hi_); }
-  // Spring size relative to the rest: s_mid / F_S (clamped), and within [1/2, 2]. The quantile clamp
-  // alone does not bound it where F_S is rounding noise (exactly flat parts): ratios of
-  // noise left the bump test with 71% regular vertices and 2.3x the RMS of a single mu.
+  // Spring size relative to the rest from a clamped F_S: s_mid / F_S, within [1/2, 2].
+  // The quantile clamp alone does not bound it where F_S is rounding noise (exactly flat
+  // parts): ratios of noise left the bump test with 71% regular vertices and 2.3x the RMS
+  // of a single mu.
   // On the scans the quantiles are within 1.5x of each other and this never binds.
   double target_size(double s) const { return std::clamp(s_mid_ / std::max(s, 1e-30), 0.5, 2.0); }
   double blocked_share() const;
