@@ -549,7 +549,8 @@ TEST(ReferenceSurface, closest_within_finds_the_closest_point) {
     EXPECT_EQ(got.point, expect.point);
     const SurfacePoint at = ref.closest_within(a, 0.0), at_expect = ref.closest(a);
     EXPECT_EQ(at.face, at_expect.face);
-    EXPECT_LT(at.distance, 1e-6);    // A quad of four surface points: its centre's closest point, with the nearest corner as hint.
+    EXPECT_LT(at.distance, 1e-6);
+    // A quad of four surface points: its centre's closest point, with the nearest corner as hint.
     const Vec3 q[4] = {a, s.positions[v + 1], b, s.positions[v + 38]};
     const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
     const SurfacePoint quad = ref.closest_to_quad_centre(q), quad_expect = ref.closest(centre);
