@@ -70,6 +70,11 @@ class Simplifier {
   }
   bool m_fitmap_allows(Index f, Index k, const Vec3& pos) const;
   bool within_m_fitmap(Index g, const Vec3* q) const;
+  // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
+  // once it passes the topology and valence checks. The loop and blocked_share() both
+  // ask here, so that the halting measure sees exactly the collapses the loop would do.
+  enum class Verdict { Topology, Valence, Geometry, Fitmap, Ok };
+  Verdict check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
   void coarsen_border();
   bool remove_border_vertex(Index b);
@@ -385,6 +390,14 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
 // [paper 3.3] No face the collapse enlarges may have a radius (largest centre-to-
 // corner distance) above F_M at its centre. The faces are those around a and c
 // after the merge, with the survivor at `pos`.
+Simplifier::Verdict Simplifier::check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
+  if (!can_collapse_diagonal(m_, f, k) || touches_kept_border(f, k)) return Verdict::Topology;
+  if (exceeds_valence(f, k)) return Verdict::Valence;
+  if (!place(f, k, pos, foot)) return Verdict::Geometry;
+  if (opt_.adaptive && !m_fitmap_allows(f, k, pos)) return Verdict::Fitmap;
+  return Verdict::Ok;
+}
+
 bool Simplifier::m_fitmap_allows(Index f, Index k, const Vec3& pos) const {
   return for_each_face_after_collapse(m_, f, k, pos, [&](Index g, const Vec3* q) { return within_m_fitmap(g, q); });
 }
@@ -476,14 +489,11 @@ double Simplifier::blocked_share() const {
     if (!m_.is_face_live(f)) continue;
     bool refused = false, allowed = false;
     for (Index k = 0; k < 2 && !allowed; ++k) {
-      if (!can_collapse_diagonal(m_, f, k) || touches_kept_border(f, k) || exceeds_valence(f, k)) continue;
       Vec3 pos;
       SurfacePoint foot;
-      if (!place(f, k, pos, foot)) continue;
-      if (m_fitmap_allows(f, k, pos))
-        allowed = true;
-      else
-        refused = true;
+      const Verdict v = check_collapse(f, k, pos, foot);
+      allowed = v == Verdict::Ok;
+      refused |= v == Verdict::Fitmap;
     }
     if (refused && !allowed) sum += 0.5 * m_.face_area_normal(f).norm();
   }
@@ -1137,20 +1147,13 @@ SimplifyReport Simplifier::run() {
       Vec3 pos;
       SurfacePoint foot;
       // A refused face comes back only when something around it changes.
-      if (!can_collapse_diagonal(m_, e.face, e.k) || touches_kept_border(e.face, e.k)) {
-        ++rep_.refused_topology;
-        continue;
-      }
-      if (exceeds_valence(e.face, e.k)) {
-        ++rep_.refused_valence;
-        continue;
-      }
-      if (!place(e.face, e.k, pos, foot)) {
-        ++rep_.refused_geometry;
-        continue;
-      }
-      if (opt_.adaptive && !m_fitmap_allows(e.face, e.k, pos)) {
-        ++rep_.refused_fitmap;
+      const Verdict verdict = check_collapse(e.face, e.k, pos, foot);
+      if (verdict != Verdict::Ok) {
+        Index& refusals = verdict == Verdict::Topology ? rep_.refused_topology
+                          : verdict == Verdict::Valence ? rep_.refused_valence
+                          : verdict == Verdict::Geometry ? rep_.refused_geometry
+                                                         : rep_.refused_fitmap;
+        ++refusals;
         continue;
       }
       cycle(e.face, e.k, pos, foot);
