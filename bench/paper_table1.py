@@ -68,8 +68,9 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def parse_args(doc, models, draws=0, samples=1000000):
-    """The options the bench scripts take (--draws: Tables 2 and 3 only)."""
+def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False):
+    """The options the bench scripts take (--draws: Tables 2 and 3 only; --adaptive-args:
+    the fixed counts only)."""
     here = os.path.dirname(os.path.abspath(__file__))
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quadsimp", default=os.path.join(here, "..", "build", "src", "quadsimp"))
@@ -78,6 +79,9 @@ def parse_args(doc, models, draws=0, samples=1000000):
     ap.add_argument("--models", nargs="*", default=models)
     if draws:
         ap.add_argument("--draws", type=int, default=draws, help="automatic halting: the file and re-rounded copies")
+    if adaptive_args:
+        ap.add_argument("--adaptive-args", default="", type=str.split,
+                        help='more options for the adaptive runs, e.g. --adaptive-args="--m-factor 0.8"')
     return ap.parse_args()
 
 
