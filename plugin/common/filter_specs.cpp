@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "quadsimp/simplify/pipeline.h"
+
 namespace qs::plugin {
 
 namespace {
@@ -66,12 +68,12 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "Adaptive mode only: ignore the target and stop once the faces whose collapses the M-fitmap refuses cover "
        "the halting share of the surface (the paper runs until none is allowed, which coarsens the rest far past "
        "its error balance)."},
-      {kSimplify, "HaltShare", "Halting share (automatic halting)", ParamKind::Float, 0.15, 0.001, 1,
+      {kSimplify, "HaltShare", "Halting share (automatic halting)", ParamKind::Float, SimplifyParams().halt_share, 0.001, 1,
        "Automatic halting: the share of the surface the M-fitmap may block, beyond what it blocked before the "
        "first collapse, before simplification stops (0.15: the bunny, gargoyle and armadillo stop near the "
        "paper's counts). Smaller stops earlier, with more quads; 1 runs until no collapse is allowed, the "
        "paper's rule."},
-      {kSimplify, "Tau", "Fitmap tolerance tau", ParamKind::Float, 0.05, 0.001, 0.5,
+      {kSimplify, "Tau", "Fitmap tolerance tau", ParamKind::Float, SimplifyParams().tau, 0.001, 0.5,
        "Adaptive mode: share of a neighbourhood allowed to face against its fitted plane in the M-fitmap "
        "(0.05 in the paper). Larger values allow larger faces."},
       {kSimplify, "PreserveBoundary", "Preserve boundary", ParamKind::Bool, 0, 0, 1,
@@ -85,7 +87,7 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "Afterwards, move each vertex along its normal, off the input surface, so that the quads lie as close "
        "to it as they can both ways (least squares, ours): about 30% lower RMS distance. Off: every vertex "
        "stays on the input, as in the paper."},
-      {kFitmaps, "Tau", "Fitmap tolerance tau", ParamKind::Float, 0.05, 0.001, 0.5,
+      {kFitmaps, "Tau", "Fitmap tolerance tau", ParamKind::Float, FitmapOptions().tau, 0.001, 0.5,
        "Share of a neighbourhood allowed to face against its fitted plane before the M-fitmap stops growing."},
       {kQuality, "ReferenceMesh", "Reference mesh", ParamKind::Mesh, 0, 0, 0,
        "The layer the distance is measured to (usually the original triangle mesh)."},

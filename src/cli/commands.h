@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include "quadsimp/simplify/pipeline.h"
+
 namespace qs::cli {
 
 //! Exit codes shared by every subcommand.
@@ -19,14 +21,14 @@ struct SimplifyArgs {
   unsigned faces = 0;
   bool adaptive = false, auto_halt = false, preserve_boundary = false, fast = false, fit_to_input = false, stats = false, json = false,
        quiet = false;
-  double tau = 0.05, m_factor = 1.0, halt_share = 0.15;
+  double tau = SimplifyParams().tau, m_factor = SimplifyParams().m_factor, halt_share = SimplifyParams().halt_share;
   unsigned samples = 1000000;
 };
 int run_simplify(const SimplifyArgs& args);
 
 struct FitmapArgs {
   std::string input, output;
-  double tau = 0.05;
+  double tau = FitmapOptions().tau;
   bool quiet = false;
 };
 int run_fitmap(const FitmapArgs& args);

@@ -2,18 +2,20 @@
 #pragma once
 
 #include "quadsimp/convert/prepare_input.h"
+#include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/simplify/simplify.h"
 
 namespace qs {
 
-//! What a user chooses, in the CLI or in a MeshLab filter (the same names and defaults).
+//! What a user chooses, in the CLI or in a MeshLab filter (the same names and defaults:
+//! both take theirs from here, and the options' defaults come from the core's).
 struct SimplifyParams {
   Index target_faces = 0;        //!< uniform: required; adaptive: optional
   bool adaptive = false;
   bool auto_halt = false;        //!< adaptive: stop once the M-fitmap blocks halt_share of the surface
-  double tau = 0.05;             //!< M-fitmap tolerance
-  double m_factor = 1.0;         //!< adaptive: face radius <= F_M / m_factor
-  double halt_share = 0.15;      //!< auto_halt: see SimplifyOptions::halt_share
+  double tau = FitmapOptions().tau;                //!< M-fitmap tolerance
+  double m_factor = SimplifyOptions().m_factor;      //!< adaptive: face radius <= F_M / m_factor
+  double halt_share = SimplifyOptions().halt_share;  //!< auto_halt: see SimplifyOptions::halt_share
   bool preserve_boundary = false;
   bool fast = false;             //!< one optimisation pass per collapse (the paper's loop)
   bool fit_to_input = false;     //!< afterwards, fit_to_surface(): vertices leave the input

@@ -37,11 +37,12 @@ struct SimplifyOptions {
   //! Automatic halting (adaptive mode without a face target): stop once the faces whose
   //! every diagonal collapse the other checks allow is refused by the M-fitmap cover
   //! this share of the surface more than before the first collapse (measured over all
-  //! faces, at steps of the face count that shrink to 1% near it). 1 runs on until no feasible collapse remains (the paper's
-  //! rule). Ours: with the paper's rule the blocked parts stay put while the rest keeps
-  //! coarsening, far past what the fitmap's error balance asks (bunny: 340 quads, RMS
-  //! 2.4x the uniform result at that count). With 0.15 the bunny, gargoyle and armadillo
-  //! halt within 10% of the paper's counts, the moai 15-35% below (bench/RESULTS.md).
+  //! faces, at steps of the face count that shrink to 1% near it). 1 runs on until no
+  //! feasible collapse remains (the paper's rule). Ours: with the paper's rule the
+  //! blocked parts stay put while the rest keeps coarsening, far past what the fitmap's
+  //! error balance asks (bunny: 248 quads, RMS 2.2x the uniform result at that count).
+  //! With 0.15 the bunny, gargoyle and armadillo halt within 10% of the paper's counts,
+  //! the moai 15-35% below (bench/RESULTS.md).
   double halt_share = 0.15;
   //! Gauss-Seidel sweeps of the spring relaxation after each collapse.
   int smoothing_sweeps = 3;
