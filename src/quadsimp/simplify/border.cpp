@@ -1,0 +1,154 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+// Border vertices: their target valences, the corners smoothing pins, and border
+// coarsening (ours; ops/border_ear.h).
+#include "quadsimp/simplify/simplifier.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "quadsimp/ops/border_ear.h"
+#include "quadsimp/ops/diagonal_collapse.h"
+#include "quadsimp/ops/local_rewrite.h"
+
+namespace qs::detail {
+namespace {
+
+// A border vertex is removed when its two border edges add up to less than this many
+// mu. Measured on bunny.ply at 3K/5K/11K quads: 1.0 left homeometry minima of
+// 0.46/0.30/0.44, 1.3 gives 0.53/0.52/0.44 with the same RMS, 1.6 starts to stretch
+// border faces (maximum 3.09 at 5K).
+constexpr double kBorderShort = 1.3;
+
+}  // namespace
+
+// Border vertices aim at valence 3, sharp border corners (turning by more than 60
+// degrees) at 2 where the border turns towards the mesh (an inner angle under 120
+// degrees: one face) and at 4 where it turns away from it (over 240: three faces).
+// With 2 at both kinds, the two faces of a concave corner of bunny.ply's holes shared
+// its 270 degrees, one of them at 160 degrees with an edge of 0.38 mu.
+int Simplifier::target_valence_of_border(Index v) const {
+  const auto [in, out] = border_directions(v);
+  if (in.dot(out) >= 0.5) return 3;
+  // Faces lie to the left of their half-edges: a left turn (about the surface's normal)
+  // from the incoming border edge to the outgoing one is a convex corner.
+  return in.cross(out).dot(foot_normal_[v]) > 0 ? 2 : 4;
+}
+
+// Unit directions of the border edges arriving at and leaving border vertex v.
+std::pair<Vec3, Vec3> Simplifier::border_directions(Index v) const {
+  const Vec3& p = m_.position(v);
+  return {(p - m_.position(m_.from(m_.border_in(v)))).normalized(), (m_.position(m_.to(m_.out(v))) - p).normalized()};
+}
+
+// The angle between the two border edges at border vertex v.
+double Simplifier::border_turn(Index v) const {
+  const auto [in, out] = border_directions(v);
+  return std::acos(std::clamp(in.dot(out), -1.0, 1.0));
+}
+
+// A border vertex stays where the border turns by more than 45 degrees while it runs
+// on straighter (turning less than half as much) at both neighbours: the corners of a
+// square or an L. Ours. Pinning every turn over 45 degrees and every vertex of valence
+// 2, as before, pinned most vertices of bunny.ply's small, jagged holes (a loop of
+// eight turns by 45 degrees at each), and the free ones between them bunched up at
+// the pinned ones: over 16 face counts from 2K to 13K, 13 runs ended with an edge under
+// 0.5 mu, 4 with this rule. Pinning nothing loses the square's corners.
+bool Simplifier::is_border_corner(Index v) const {
+  const double t = border_turn(v);
+  if (t <= M_PI / 4) return false;
+  const Index next = m_.to(m_.out(v)), prev = m_.from(m_.border_in(v));
+  const double t_next = border_turn(next), t_prev = border_turn(prev);
+  if (std::max(t_next, t_prev) < 0.5 * t) return true;
+  // The end of a strip one quad wide: v and a neighbour w, both of valence 2 (the free
+  // corners of a quad with three border edges), both turn by more than 45 degrees, and
+  // the border runs on straighter beyond the pair. Unpinned, the springs and the chord
+  // collapses there slid a strip's ends inwards (by half a quad per chord).
+  const auto strip_end = [&](Index w, double t_w, double t_before_v, Index after_w) {
+    return m_.valence(v) == 2 && m_.valence(w) == 2 && t_w > M_PI / 4 &&
+           std::max(t_before_v, border_turn(after_w)) < 0.5 * std::min(t, t_w);
+  };
+  return strip_end(next, t_next, t_prev, m_.to(m_.out(next))) ||
+         strip_end(prev, t_prev, t_next, m_.from(m_.border_in(prev)));
+}
+
+// Border coarsening (ours; see ops/border_ear.h). A border vertex b whose two border
+// edges are short next to mu is removed: the interior edge at b is rotated so that b's
+// only face is an ear, then the ear collapses with the merged vertex at b (on M0's
+// border). Nothing happens unless both steps pass their checks; a rotation whose ear
+// is refused is undone.
+void Simplifier::coarsen_border() {
+  // The list is taken first: removals kill vertices and move others to the border.
+  border_verts_.clear();
+  for (Index v = 0; v < m_.vertex_capacity(); ++v)
+    if (m_.is_vertex_live(v) && m_.is_border_vertex(v)) border_verts_.push_back(v);
+  for (Index b : border_verts_)
+    if (m_.is_vertex_live(b) && m_.is_border_vertex(b)) remove_border_vertex(b);
+}
+
+// Where border vertices a and c merge: at a border corner if one of them is one (false
+// if both are), else at `otherwise`. Merging at the middle cut the corners of an
+// L-shaped grid by a third of mu (border coarsening) and took half a quad off a strip's
+// ends at every chord there.
+bool Simplifier::border_merge_point(Index a, Index c, const Vec3& otherwise, Vec3& p) const {
+  const bool corner_a = is_border_corner(a), corner_c = is_border_corner(c);
+  if (corner_a && corner_c) return false;
+  p = corner_a ? m_.position(a) : corner_c ? m_.position(c) : otherwise;
+  return true;
+}
+
+bool Simplifier::remove_border_vertex(Index b) {
+  const Index out = m_.out(b), ha = m_.border_in(b);  // b -> c and a -> b, both on the border
+  const Index a = m_.from(ha), c = m_.to(out);
+  const double ab = (m_.position(a) - m_.position(b)).norm(), bc = (m_.position(b) - m_.position(c)).norm();
+  const int valence = m_.valence(b);
+  if (ab + bc >= kBorderShort * mu_at(b) || valence > 3) return false;
+  // a, b and c merge into one vertex, at b unless a or c is a corner.
+  Vec3 keep;
+  if (!border_merge_point(a, c, m_.position(b), keep)) return false;
+  // The ear is f with b at corner k, once b has a single face.
+  auto try_ear = [&](Index ear, Index k) {
+    // Unchecked, a corner that kept its place took in its border neighbours one after
+    // another: the corner of a grid of 200 x 4 skinny cells ended with valence 14.
+    if (ear_exceeds_valence(ear, k)) return false;
+    const SurfacePoint foot = ref_.closest_within(keep, 0.0);  // a vertex's place
+    if (!can_collapse_border_ear(m_, ear, k) || !foot.found() ||
+        !for_each_face_after_collapse(m_, ear, (k + 1) & 3u, keep,
+                              [&](Index g, const Vec3* q) { return shape_ok(g, q, ref_.normal_at(foot)); }))
+      return false;
+    const Index d = m_.vertex(ear, k + 2);
+    const Index v = collapse_border_ear(m_, ear, k, keep);
+    record_foot(v, foot);
+    ++rep_.border_collapses;
+    after_change({v, d});
+    return true;
+  };
+  if (valence == 2) return try_ear(QuadMesh::face(out), QuadMesh::corner(out));
+  // Valence 3: rotate the interior edge b -> e away first, so that b keeps one face.
+  const Index h = QuadMesh::next(ha);
+  if (m_.twin(h) == kNone) return false;
+  const Index g = m_.twin(h), f1 = QuadMesh::face(h), f2 = QuadMesh::face(g);
+  const std::array<std::array<Index, 4>, 2> before = {m_.face_vertices(f1), m_.face_vertices(f2)};
+  const std::array<Index, 6> outer = {m_.twin(QuadMesh::next(h)), m_.twin(QuadMesh::opposite_in_face(h)),
+                                      m_.twin(QuadMesh::prev(h)),  m_.twin(QuadMesh::next(g)),
+                                      m_.twin(QuadMesh::opposite_in_face(g)), m_.twin(QuadMesh::prev(g))};
+  // The ear itself is not checked: it is collapsed next, and try_ear checks the faces
+  // after that. Checking it refused every border vertex where the border is straight
+  // or turns outwards (the ear's angle at b is then 180 degrees or more): on bunny.ply
+  // at 11K, border edges of 0.44 mu stayed along a hole's staircase border.
+  for (Rotation r : {Rotation::Ccw, Rotation::Cw}) {
+    if (!rotation_passes_cap(h, r) || !can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r, b, refuse_folds_) ||
+        !rotation_follows_reference(h, r, b))
+      continue;
+    rotate_edge(m_, h, r);
+    Index ear = kNone, k = 0;
+    for (Index f : {f1, f2})
+      for (Index i = 0; i < 4; ++i)
+        if (m_.vertex(f, i) == b) ear = f, k = i;
+    if (ear != kNone && try_ear(ear, k)) return true;
+    const Index faces[2] = {f1, f2};
+    detail::rewrite_faces(m_, faces, before.data(), 2, outer.data(), 6);  // undo the rotation
+  }
+  return false;
+}
+
+}  // namespace qs::detail

@@ -1,0 +1,180 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+// The simplifier's state and steps, shared by the files of this folder: the loop and the
+// collapse checks (simplify.cpp), face shape checks (shape_checks.cpp), spring smoothing
+// (smoothing.cpp), edge rotations (rotations.cpp), border coarsening (border.cpp),
+// poly-chord collapses (chords.cpp) and unfolding (unfolding.cpp). Internal: the API is
+// simplify.h.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <initializer_list>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "quadsimp/ops/chord_collapse.h"
+#include "quadsimp/ops/edge_rotation.h"
+#include "quadsimp/simplify/simplify.h"
+
+namespace qs::detail {
+
+// One candidate collapse: diagonal k (corners k, k+2) of `face`, valid while the
+// face's version is unchanged (lazy invalidation).
+struct Entry {
+  float key;
+  Index face;
+  std::uint32_t version;
+  std::uint32_t k;
+};
+struct LaterFirst {  // makes std::*_heap a min-heap, ties broken by ids
+  bool operator()(const Entry& a, const Entry& b) const {
+    if (a.key != b.key) return a.key > b.key;
+    if (a.face != b.face) return a.face > b.face;
+    return a.k > b.k;
+  }
+};
+
+class Simplifier {
+ public:
+  Simplifier(QuadMesh& m, const ReferenceSurface& ref, const SimplifyOptions& opt)
+      : m_(m), ref_(ref), opt_(opt), refuse_folds_(opt.refuse_folds) {}
+
+  SimplifyReport run();
+
+ private:
+  void append_entries(Index f);
+  void push_face(Index f);
+  bool place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
+  bool touches_kept_border(Index f, Index k) const {
+    return opt_.preserve_boundary && (m_.is_border_vertex(m_.vertex(f, k)) || m_.is_border_vertex(m_.vertex(f, k + 2)));
+  }
+  bool exceeds_valence(Index f, Index k) const {
+    return opt_.max_valence > 0 &&
+           m_.valence(m_.vertex(f, k)) + m_.valence(m_.vertex(f, k + 2)) - 2 > opt_.max_valence;
+  }
+  // The border ear f with b at corner k merges its neighbours a and c into one vertex of
+  // val(a) + val(c) - 3 edges (border_ear.h).
+  bool ear_exceeds_valence(Index f, Index k) const {
+    return opt_.max_valence > 0 &&
+           m_.valence(m_.vertex(f, k + 3)) + m_.valence(m_.vertex(f, k + 1)) - 3 > opt_.max_valence;
+  }
+  bool m_fitmap_allows(Index f, Index k, const Vec3& pos) const;
+  bool within_m_fitmap(Index g, const Vec3* q) const;
+  // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
+  // once it passes the topology and valence checks. The loop and blocked_share() both
+  // ask here, so that the halting measure sees exactly the collapses the loop would do.
+  enum class Verdict { Topology, Valence, Geometry, Fitmap, Ok };
+  Verdict check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
+  void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
+  void coarsen_border();
+  bool remove_border_vertex(Index b);
+  bool border_merge_point(Index a, Index c, const Vec3& otherwise, Vec3& p) const;
+  void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
+  void after_change(const Index* first, const Index* last);
+  bool collapse_chords();
+  bool try_collapse_chord(const Chord& chord);
+  void add_faces_around(Index v, std::vector<Index>& faces);
+  void rotate_in_region();
+  bool try_rotate(Index h);
+  void unfold();
+  bool unfold_face(Index f);
+  bool relocate_corner(Index f);
+  bool rotation_follows_reference(Index h, Rotation r, Index except = kNone) const;
+  bool rotation_passes_cap(Index h, Rotation r) const;
+  void smooth_region(int sweeps);
+  void smooth_vertex(Index v);
+  bool moved_faces_ok(Index v, const Vec3& p) const;
+  bool shape_ok(Index f, const Vec3* q, const Vec3& extra_normal, bool bend_check = true) const;
+  bool follows_reference(const Vec3& n, const std::array<Index, 4>& corners, const Vec3* q,
+                         const Vec3& extra_normal) const;
+  int target_valence_of_border(Index v) const;
+  std::pair<Vec3, Vec3> border_directions(Index v) const;
+  double border_turn(Index v) const;
+  bool is_border_corner(Index v) const;
+  int target_valence(Index v) const { return m_.is_border_vertex(v) ? target_valence_of_border(v) : 4; }
+  void requeue_region();
+  void rebuild_heap();
+  double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n, Index& hint) const;
+  double s_weight(Index f);
+  // Where a walk to f's centre starts: the triangle under it at its last key, else a corner's.
+  Index centre_hint(Index f) const { return centre_foot_[f] != kNone ? centre_foot_[f] : foot_face_[m_.vertex(f, 0)]; }
+  // F_S as the priority and the sizing use it: clamped to [s_lo, s_hi].
+  double clamped_s(double s) const { return std::clamp(s, s_lo_, s_hi_); }
+  // Spring size relative to the rest from a clamped F_S: s_mid / F_S, within [1/2, 2].
+  // The quantile clamp alone does not bound it where F_S is rounding noise (exactly flat
+  // parts): ratios of noise left the bump test with 71% regular vertices and 2.3x the RMS
+  // of a single mu.
+  // On the scans the quantiles are within 1.5x of each other and this never binds.
+  double target_size(double s) const { return std::clamp(s_mid_ / std::max(s, 1e-30), 0.5, 2.0); }
+  double blocked_share() const;
+  double predicted_halt() const;
+  // Whether two corners or more have their feet on or next to a folded-over patch of M0.
+  // With one (the faces around a fold) the other three still say where M0 faces. "Any
+  // corner" changed the armadillo's runs (17 single-triangle flaps): at 1,806 quads its
+  // longest diagonal went from 2.43 to 3.03 mu, 1.3 mu from a flap; "two" changes none
+  // of 66 dataset runs and still clears the 1.1M bunny's fold.
+  bool over_flap(const std::array<Index, 4>& c) const {
+    int n = 0;
+    for (Index v : c) n += foot_face_[v] != kNone && ref_.is_flap(foot_face_[v]);
+    return n >= 2;
+  }
+  void record_foot(Index v, const SurfacePoint& s) {
+    foot_normal_[v] = ref_.normal_at(s);
+    foot_face_[v] = s.face;
+    if (!opt_.adaptive) return;
+    s_foot_[v] = clamped_s(ref_.interpolate(opt_.fitmaps->s, s));
+    size_[v] = target_size(s_foot_[v]);
+  }
+  void update_mu();
+  // The mean edge of v's connected component: what its springs and the thresholds
+  // scaled by the edge length use. With one mu for all, a part too small to hold quads
+  // of the mesh's size (a sphere a tenth the size of another, beside it) had springs
+  // longer than itself: its quads crumpled (edges from 0.02 to 8 mu), every collapse
+  // there was refused at 75 quads, and the target was reached by taking the large
+  // sphere down to 8. No operator joins or splits components, so the labels hold.
+  double mu_at(Index v) const { return component_mu_[component_[v]]; }
+  // Spring rest length between u and v, for an edge (diagonals: times sqrt(2)).
+  double rest_length(Index u, Index v) const {
+    const double mu = mu_at(u);
+    return opt_.adaptive ? mu * 0.5 * (size_[u] + size_[v]) / size_mean_ : mu;
+  }
+
+  QuadMesh& m_;
+  const ReferenceSurface& ref_;
+  const SimplifyOptions& opt_;
+  SimplifyReport rep_;
+  double mu_ = 0;  // the mean edge of the whole mesh: search radii
+  std::vector<Index> component_;     // per vertex
+  std::vector<double> component_mu_;  // per component
+  std::vector<std::uint32_t> version_, face_mark_, vertex_mark_;
+  // Reference normal under each vertex (at its last projection): faces are checked
+  // against these, so that no sequence of small turns can flip a face.
+  std::vector<Vec3> foot_normal_;
+  std::vector<Index> foot_face_;  // the triangle under each vertex: where project_near() starts
+  std::vector<Index> centre_foot_;  // adaptive: the triangle under each face's centre at its last key
+  // Adaptive mode: the F_S range the priority is clamped to, and the target size of each
+  // vertex relative to the rest (s_mid / F_S under it, clamped alike) and its mean.
+  double s_lo_ = 0, s_hi_ = std::numeric_limits<double>::infinity(), s_mid_ = 1;
+  std::vector<double> s_foot_;  // clamped F_S under each vertex
+  // target_size(s_foot_[v]), written only by record_foot(): rest_length() reads it for
+  // every spring, and computing it there instead (two divisions a spring) measured 2-3%
+  // slower on the adaptive armadillo and bunny (five of seven alternated runs).
+  std::vector<double> size_;
+  double size_mean_ = 1;
+  double fine_above_ = std::numeric_limits<double>::infinity();  // the fine phase runs above this face count
+  std::uint32_t stamp_ = 0;
+  std::vector<Entry> heap_;
+  std::vector<Index> region_faces_, region_verts_, work_, cand_, border_verts_;
+  Chord chord_;
+  std::vector<Index> beside_;
+  std::vector<Vec3> chord_pos_;
+  std::vector<SurfacePoint> chord_feet_;
+  std::vector<std::size_t> edge_count_;  // per component, for update_mu()
+  bool has_border_ = false;  // no operator makes a border where there was none
+  double area_ = 0;  // of the mesh at the start
+  bool refuse_folds_;  // opt_.refuse_folds, and on during unfold(): what every fold check reads
+};
+
+}  // namespace qs::detail
