@@ -187,6 +187,32 @@ TEST(Adaptive, m_fitmap_refuses_collapses_that_grow_faces_past_it) {
   validate(q);
 }
 
+TEST(Adaptive, m_fitmap_refuses_chord_collapses_too) {
+  // A bent strip one quad wide shortens only by chord collapses (see Simplify's strip
+  // test); the faces beside a chord grow, so F_M must be able to refuse it.
+  TriMesh t = tri_grid(60, 1);
+  for (Vec3& p : t.positions) p = Vec3(p.x(), p.y() / 60, 0.2 * std::sin(M_PI * p.x()));
+  clean(t);
+  const ReferenceSurface ref(t);
+  Fitmaps f = compute_fitmaps(t);
+  SimplifyOptions opt = adaptive_options(f);
+  opt.target_faces = 15;
+  auto run = [&](double fm) {
+    std::fill(f.m.begin(), f.m.end(), float(fm));
+    QuadMesh q = tri_to_quad(t);
+    const SimplifyReport r = simplify(q, ref, opt);
+    validate(q);
+    return r;
+  };
+  const SimplifyReport free_run = run(1.0);  // the strip's length: F_M refuses nothing
+  EXPECT_GT(free_run.chord_collapses, 0u);
+  EXPECT_LE(free_run.faces, 15u);
+  const SimplifyReport r = run(0.1 * ref.mean_edge_length());
+  EXPECT_EQ(r.chord_collapses, 0u);
+  EXPECT_GT(r.refused_fitmap, 0u);
+  EXPECT_EQ(r.faces, 60u);
+}
+
 TEST(Adaptive, auto_halt_terminates) {
   QuadMesh q;
   const SimplifyReport r = simplify_adaptive(sphere_with_far_triangle(30, 40), q);  // until nothing is feasible
