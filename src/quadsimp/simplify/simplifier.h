@@ -44,60 +44,13 @@ class Simplifier {
   SimplifyReport run();
 
  private:
-  void append_entries(Index f);
-  void push_face(Index f);
-  bool place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
-  bool touches_kept_border(Index f, Index k) const {
-    return opt_.preserve_boundary && (m_.is_border_vertex(m_.vertex(f, k)) || m_.is_border_vertex(m_.vertex(f, k + 2)));
-  }
-  bool exceeds_valence(Index f, Index k) const {
-    return opt_.max_valence > 0 &&
-           m_.valence(m_.vertex(f, k)) + m_.valence(m_.vertex(f, k + 2)) - 2 > opt_.max_valence;
-  }
-  // The border ear f with b at corner k merges its neighbours a and c into one vertex of
-  // val(a) + val(c) - 3 edges (border_ear.h).
-  bool ear_exceeds_valence(Index f, Index k) const {
-    return opt_.max_valence > 0 &&
-           m_.valence(m_.vertex(f, k + 3)) + m_.valence(m_.vertex(f, k + 1)) - 3 > opt_.max_valence;
-  }
-  bool m_fitmap_allows(Index f, Index k, const Vec3& pos) const;
-  bool within_m_fitmap(Index g, const Vec3* q) const;
-  // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
-  // once it passes the topology and valence checks. The loop and blocked_share() both
-  // ask here, so that the halting measure sees exactly the collapses the loop would do.
-  enum class Verdict { Topology, Valence, Geometry, Fitmap, Ok };
-  Verdict check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
-  void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
-  void coarsen_border();
-  bool remove_border_vertex(Index b);
-  bool border_merge_point(Index a, Index c, const Vec3& otherwise, Vec3& p) const;
-  void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
-  void after_change(const Index* first, const Index* last);
-  bool collapse_chords();
-  bool try_collapse_chord(const Chord& chord);
-  void add_faces_around(Index v, std::vector<Index>& faces);
-  void rotate_in_region();
-  bool try_rotate(Index h);
-  void unfold();
-  bool unfold_face(Index f);
-  bool relocate_corner(Index f);
-  bool rotation_follows_reference(Index h, Rotation r, Index except = kNone) const;
-  bool rotation_passes_cap(Index h, Rotation r) const;
-  void smooth_region(int sweeps);
-  void smooth_vertex(Index v);
-  bool moved_faces_ok(Index v, const Vec3& p) const;
-  bool shape_ok(Index f, const Vec3* q, const Vec3& extra_normal, bool bend_check = true) const;
-  bool follows_reference(const Vec3& n, const std::array<Index, 4>& corners, const Vec3* q,
-                         const Vec3& extra_normal) const;
-  int target_valence_of_border(Index v) const;
-  std::pair<Vec3, Vec3> border_directions(Index v) const;
-  double border_turn(Index v) const;
-  bool is_border_corner(Index v) const;
-  int target_valence(Index v) const { return m_.is_border_vertex(v) ? target_valence_of_border(v) : 4; }
-  void requeue_region();
+  // The loop: the heap and its keys, the collapse checks, automatic halting, and what
+  // follows each change (simplify.cpp).
   void rebuild_heap();
-  double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n, Index& hint) const;
+  void push_face(Index f);
+  void append_entries(Index f);
   double s_weight(Index f);
+  double sample_fitmap(const std::vector<float>& field, const Vec3& p, const Vec3& n, Index& hint) const;
   // Where a walk to f's centre starts: the triangle under it at its last key, else a corner's.
   Index centre_hint(Index f) const { return centre_foot_[f] != kNone ? centre_foot_[f] : foot_face_[m_.vertex(f, 0)]; }
   // F_S as the priority and the sizing use it: clamped to [s_lo, s_hi].
@@ -108,18 +61,28 @@ class Simplifier {
   // of a single mu.
   // On the scans the quantiles are within 1.5x of each other and this never binds.
   double target_size(double s) const { return std::clamp(s_mid_ / std::max(s, 1e-30), 0.5, 2.0); }
+  // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
+  // once it passes the topology and valence checks. The loop and blocked_share() both
+  // ask here, so that the halting measure sees exactly the collapses the loop would do.
+  enum class Verdict { Topology, Valence, Geometry, Fitmap, Ok };
+  Verdict check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
+  bool touches_kept_border(Index f, Index k) const {
+    return opt_.preserve_boundary && (m_.is_border_vertex(m_.vertex(f, k)) || m_.is_border_vertex(m_.vertex(f, k + 2)));
+  }
+  bool exceeds_valence(Index f, Index k) const {
+    return opt_.max_valence > 0 &&
+           m_.valence(m_.vertex(f, k)) + m_.valence(m_.vertex(f, k + 2)) - 2 > opt_.max_valence;
+  }
+  bool place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
+  bool m_fitmap_allows(Index f, Index k, const Vec3& pos) const;
+  bool within_m_fitmap(Index g, const Vec3* q) const;
+  void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
+  void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
+  void after_change(const Index* first, const Index* last);
+  void add_faces_around(Index v, std::vector<Index>& faces);
+  void requeue_region();
   double blocked_share() const;
   double predicted_halt() const;
-  // Whether two corners or more have their feet on or next to a folded-over patch of M0.
-  // With one (the faces around a fold) the other three still say where M0 faces. "Any
-  // corner" changed the armadillo's runs (17 single-triangle flaps): at 1,806 quads its
-  // longest diagonal went from 2.43 to 3.03 mu, 1.3 mu from a flap; "two" changes none
-  // of 66 dataset runs and still clears the 1.1M bunny's fold.
-  bool over_flap(const std::array<Index, 4>& c) const {
-    int n = 0;
-    for (Index v : c) n += foot_face_[v] != kNone && ref_.is_flap(foot_face_[v]);
-    return n >= 2;
-  }
   void record_foot(Index v, const SurfacePoint& s) {
     foot_normal_[v] = ref_.normal_at(s);
     foot_face_[v] = s.face;
@@ -140,6 +103,57 @@ class Simplifier {
     const double mu = mu_at(u);
     return opt_.adaptive ? mu * 0.5 * (size_[u] + size_[v]) / size_mean_ : mu;
   }
+
+  // Whether faces may take new corner positions (shape_checks.cpp).
+  bool shape_ok(Index f, const Vec3* q, const Vec3& extra_normal, bool bend_check = true) const;
+  bool follows_reference(const Vec3& n, const std::array<Index, 4>& corners, const Vec3* q,
+                         const Vec3& extra_normal) const;
+  // Whether two corners or more have their feet on or next to a folded-over patch of M0.
+  // With one (the faces around a fold) the other three still say where M0 faces. "Any
+  // corner" changed the armadillo's runs (17 single-triangle flaps): at 1,806 quads its
+  // longest diagonal went from 2.43 to 3.03 mu, 1.3 mu from a flap; "two" changes none
+  // of 66 dataset runs and still clears the 1.1M bunny's fold.
+  bool over_flap(const std::array<Index, 4>& c) const {
+    int n = 0;
+    for (Index v : c) n += foot_face_[v] != kNone && ref_.is_flap(foot_face_[v]);
+    return n >= 2;
+  }
+  bool moved_faces_ok(Index v, const Vec3& p) const;
+
+  // Spring smoothing (smoothing.cpp).
+  void smooth_region(int sweeps);
+  void smooth_vertex(Index v);
+
+  // Edge rotations (rotations.cpp).
+  void rotate_in_region();
+  bool try_rotate(Index h);
+  int target_valence(Index v) const { return m_.is_border_vertex(v) ? target_valence_of_border(v) : 4; }
+  bool rotation_passes_cap(Index h, Rotation r) const;
+  bool rotation_follows_reference(Index h, Rotation r, Index except = kNone) const;
+
+  // Border vertices and border coarsening (border.cpp).
+  int target_valence_of_border(Index v) const;
+  std::pair<Vec3, Vec3> border_directions(Index v) const;
+  double border_turn(Index v) const;
+  bool is_border_corner(Index v) const;
+  void coarsen_border();
+  bool remove_border_vertex(Index b);
+  // The border ear f with b at corner k merges its neighbours a and c into one vertex of
+  // val(a) + val(c) - 3 edges (border_ear.h).
+  bool ear_exceeds_valence(Index f, Index k) const {
+    return opt_.max_valence > 0 &&
+           m_.valence(m_.vertex(f, k + 3)) + m_.valence(m_.vertex(f, k + 1)) - 3 > opt_.max_valence;
+  }
+  bool border_merge_point(Index a, Index c, const Vec3& otherwise, Vec3& p) const;
+
+  // Poly-chord collapses (chords.cpp).
+  bool collapse_chords();
+  bool try_collapse_chord(const Chord& chord);
+
+  // Unfolding (unfolding.cpp).
+  void unfold();
+  bool unfold_face(Index f);
+  bool relocate_corner(Index f);
 
   QuadMesh& m_;
   const ReferenceSurface& ref_;
