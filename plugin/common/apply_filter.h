@@ -14,6 +14,17 @@
 
 namespace qs::plugin {
 
+//! Marks a layer of quads (triangle pairs with a faux diagonal) polygonal, as MeshLab's
+//! own quad filters do: without it the GUI draws the diagonals, and MeshLab's polygon
+//! filters (planarity quality, the OBJ exporter's polygons) take the layer for triangles.
+//! Those walk the faux edges through face-face adjacency, which a polygonal layer loaded
+//! from a file has and a fresh one needs computed: without it pymeshlab's planarity
+//! quality crashed on our layer.
+template <class Model>
+void mark_polygonal(Model* m) {
+  m->updateDataMask(Model::MM_POLYGONAL | Model::MM_FACEFACETOPO);
+}
+
 //! Runs filter `id` on the current layer of `md`. `update_box(model*)` recomputes a
 //! layer's bounding box and normals; `reference_layer()` returns the layer chosen as
 //! ReferenceMesh (nullptr if none). \throw InvalidInput, std::invalid_argument.
@@ -32,13 +43,15 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
           run_simplification(mesh_file_of(m->cm), name, simplify_params_of(params), progress_of(cb), out);
       auto* result = md.addNewMesh("", m->label() + " quads", true);
       assign_quads(result->cm, q);
+      mark_polygonal(result);
       update_box(result);
       break;
     }
     case kConvert: {
       const QuadMesh q = run_conversion(mesh_file_of(m->cm), name, out);
       assign_quads(m->cm, q);
-      m->clearDataMask(Model::MM_FACEFACETOPO | Model::MM_VERTFACETOPO);
+      m->clearDataMask(Model::MM_VERTFACETOPO);
+      mark_polygonal(m);
       update_box(m);
       break;
     }

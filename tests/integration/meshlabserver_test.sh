@@ -6,7 +6,8 @@
 #    target face count (within 1%);
 #  - the plugin and the CLI give the same result for the same input and parameters, in
 #    uniform mode and in adaptive mode with automatic halting (at two halting shares);
-#  - a point cloud makes the filter fail with our message, without crashing MeshLab.
+#  - a point cloud makes the filter fail with our message, without crashing MeshLab;
+#  - the quads come out as polygonal layers that MeshLab's polygon filters accept.
 # Usage: meshlabserver_test.sh PLUGIN.so QUADSIMP_CLI REPO_DIR DATASETS_DIR
 set -euo pipefail
 plugin=$1 cli=$2 repo=$3 datasets=$4
@@ -178,6 +179,25 @@ if server -i "$work/torus.ply" -o "$work/torus_converted.ply" -m ff vq -s "$work
 else
   fail "the convert/fitmaps/quality script failed"; cat "$work/server.log"
 fi
+
+# 6. The layers come out polygonal, as MeshLab's own quad filters make them: MeshLab's
+#    polygonal planarity quality (which refuses triangle-only layers, and walks the faux
+#    edges through face-face adjacency) runs on the simplified and the converted torus.
+planarity='<filter name="Per Face Quality according to Triangle shape and aspect ratio">
+  <Param name="Metric" type="RichEnum" value="6" enum_cardinality="8" enum_val0="area/max side"
+   enum_val1="inradius/circumradius" enum_val2="Mean ratio" enum_val3="Area" enum_val4="Texture Angle Distortion"
+   enum_val5="Texture Area Distortion" enum_val6="Polygonal planarity (max)" enum_val7="Polygonal planarity (relative)"/>
+ </filter>'
+for first in "$(sed -n '/<filter name="Quad Mesh Simplification">/,/<\/filter>/p' "$script" |
+                sed 's/value="3000"/value="500"/')" '<filter name="Convert to Pure Quad Mesh"/>'; do
+  printf '<!DOCTYPE FilterScript>\n<FilterScript>\n%s\n %s\n</FilterScript>\n' "$first" "$planarity" >"$work/planar.mlx"
+  if server -i "$work/torus.ply" -o "$work/planar.ply" -m ff fq -s "$work/planar.mlx" -l "$work/planar.log" &&
+     grep -q "property float quality" "$work/planar.ply"; then
+    echo "ok: MeshLab's polygonal planarity runs after '$(echo "$first" | head -1 | cut -d'"' -f2)'"
+  else
+    fail "polygonal planarity refused or failed after: $(echo "$first" | head -1)"; cat "$work/server.log"
+  fi
+done
 
 if [ "$failures" -gt 0 ]; then echo "$failures failed"; exit 1; fi
 echo "meshlabserver tests passed"

@@ -137,6 +137,24 @@ def test_conversion(bunny_path):
         assert len(out.polygonal_face_list()) >= triangles // 2
 
 
+def test_layers_are_polygonal_for_meshlabs_own_filters(bunny_path):
+    # MeshLab's polygonal planarity refuses triangle-only layers and walks the faux edges
+    # through face-face adjacency (it crashed on a layer without it).
+    simplify = lambda ms: ms.meshing_quad_mesh_simplification(targetfacenum=1000)  # noqa: E731
+    convert = lambda ms: ms.meshing_tri_to_pure_quad()  # noqa: E731
+    for make in (simplify, convert):
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(bunny_path)
+        make(ms)
+        ms.compute_scalar_by_aspect_ratio_per_face(metric="Polygonal planarity (max)")
+        out = ms.current_mesh()
+        planarity = out.face_scalar_array()
+        assert len(planarity) == out.face_number()
+        assert np.all(np.isfinite(planarity)) and planarity.min() >= 0
+        # Each quad's two triangles get its value; a bent quad is off its plane.
+        assert 0 < planarity.max() < 0.05 * out.bounding_box().diagonal()
+
+
 def test_fitmaps_on_the_bunny_and_a_grid(bunny_path):
     for ms in meshsets(bunny_path):
         ms.compute_scalar_by_fitmap_per_vertex(tau=0.05)
