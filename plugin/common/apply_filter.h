@@ -8,6 +8,8 @@
 #include <string>
 #include <type_traits>
 
+#include <vcg/complex/algorithms/update/normal.h>
+
 #include "filter_runner.h"
 #include "filter_specs.h"
 #include "layer_conversion.h"
@@ -19,10 +21,12 @@ namespace qs::plugin {
 //! filters (planarity quality, the OBJ exporter's polygons) take the layer for triangles.
 //! Those walk the faux edges through face-face adjacency, which a polygonal layer loaded
 //! from a file has and a fresh one needs computed: without it pymeshlab's planarity
-//! quality crashed on our layer.
+//! quality crashed on our layer. Each quad's two triangles then get the quad's normal,
+//! as MeshLab gives them when it loads quads, so that flat shading shows quads.
 template <class Model>
 void mark_polygonal(Model* m) {
   m->updateDataMask(Model::MM_POLYGONAL | Model::MM_FACEFACETOPO);
+  vcg::tri::UpdateNormal<std::remove_reference_t<decltype(m->cm)>>::PerBitQuadFaceNormalized(m->cm);
 }
 
 //! Runs filter `id` on the current layer of `md`. `update_box(model*)` recomputes a
@@ -43,16 +47,16 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
           run_simplification(mesh_file_of(m->cm), name, simplify_params_of(params), progress_of(cb), out);
       auto* result = md.addNewMesh("", m->label() + " quads", true);
       assign_quads(result->cm, q);
-      mark_polygonal(result);
       update_box(result);
+      mark_polygonal(result);
       break;
     }
     case kConvert: {
       const QuadMesh q = run_conversion(mesh_file_of(m->cm), name, out);
       assign_quads(m->cm, q);
       m->clearDataMask(Model::MM_VERTFACETOPO);
-      mark_polygonal(m);
       update_box(m);
+      mark_polygonal(m);
       break;
     }
     case kFitmaps: {

@@ -153,6 +153,8 @@ def test_layers_are_polygonal_for_meshlabs_own_filters(bunny_path):
         assert np.all(np.isfinite(planarity)) and planarity.min() >= 0
         # Each quad's two triangles get its value; a bent quad is off its plane.
         assert 0 < planarity.max() < 0.05 * out.bounding_box().diagonal()
+        # ... and its normal, as MeshLab gives the triangles of the quads it loads.
+        assert len(np.unique(np.round(out.face_normal_matrix(), 12), axis=0)) == out.face_number() // 2
 
 
 def test_fitmaps_on_the_bunny_and_a_grid(bunny_path):
