@@ -157,6 +157,19 @@ def test_layers_are_polygonal_for_meshlabs_own_filters(bunny_path):
         assert len(np.unique(np.round(out.face_normal_matrix(), 12), axis=0)) == out.face_number() // 2
 
 
+def test_quads_from_meshlabs_own_triangle_pairing(bunny_path):
+    # MeshLab's smart pairing leaves doublets (two quads on two shared edges) that a
+    # split along each quad's shorter diagonal turned into a non-manifold edge.
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(bunny_path)
+    ms.meshing_tri_to_quad_by_smart_triangle_pairing()
+    paired = len(ms.current_mesh().polygonal_face_list())
+    ms.meshing_quad_mesh_simplification(targetfacenum=2000)
+    out = ms.current_mesh()
+    assert is_pure_quad(out)
+    assert len(out.polygonal_face_list()) == 2000 < paired
+
+
 def test_fitmaps_on_the_bunny_and_a_grid(bunny_path):
     for ms in meshsets(bunny_path):
         ms.compute_scalar_by_fitmap_per_vertex(tau=0.05)

@@ -5,8 +5,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <utility>
 
 #include "fixtures/shapes.h"
+#include "quadsimp/convert/prepare_input.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/util/errors.h"
@@ -170,6 +173,26 @@ TEST(FauxPairs, halves_of_a_quad_need_not_be_next_to_each_other) {
   const MeshFile t = pair_faux_triangles(p, tris, {4, 4, 1, 0});
   EXPECT_FALSE(t.is_pure_quad());
   EXPECT_EQ(t.triangles.size(), 4u);
+}
+
+TEST(QuadInput, a_doublet_is_split_into_manifold_triangles) {
+  // Quads (a,b,c,d) and (a,d,c,e) share two edges at d, which has no other face (MeshLab's
+  // own triangle pairing leaves such pairs). Both have a-c as their shorter diagonal:
+  // split along it twice, a-c was in four triangles and the input was refused.
+  const Index a = 0, b = 1, c = 2, d = 3, e = 4;
+  MeshFile f;
+  f.positions = {{0, 0, 0}, {0.5, -2, 0}, {1, 0, 0}, {0.5, 0.05, 0}, {0.5, 2, 0}};
+  f.quads = {{a, b, c, d}, {a, d, c, e}};
+  const TriMesh t = triangles_of(f);
+  ASSERT_EQ(t.faces.size(), 4u);
+  std::map<std::pair<Index, Index>, int> uses;
+  for (const auto& tri : t.faces)
+    for (int k = 0; k < 3; ++k) ++uses[std::minmax(tri[k], tri[(k + 1) % 3])];
+  for (const auto& [edge, n] : uses) EXPECT_LE(n, 2) << edge.first << "-" << edge.second;
+  EXPECT_EQ(uses.count(std::minmax(d, e)), 1u);  // the second quad takes its other diagonal
+  const Input in = prepare_input(f, "doublet");
+  EXPECT_TRUE(in.was_pure_quad);
+  EXPECT_EQ(in.quads.n_faces(), 2u);
 }
 
 TEST_F(MeshIo, bad_files_give_one_clear_error) {

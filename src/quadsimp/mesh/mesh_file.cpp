@@ -2,6 +2,7 @@
 #include "quadsimp/mesh/mesh_file.h"
 
 #include <unordered_map>
+#include <unordered_set>
 
 namespace qs {
 
@@ -64,8 +65,11 @@ MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array
   return out;
 }
 
-void split_quad(const std::vector<Vec3>& p, const std::array<Index, 4>& q, std::vector<std::array<Index, 3>>& out) {
-  if ((p[q[0]] - p[q[2]]).squaredNorm() <= (p[q[1]] - p[q[3]]).squaredNorm()) {
+namespace {
+
+// The two triangles of q split along corners 0-2, or 1-3 if `odd`.
+void split_along(const std::array<Index, 4>& q, bool odd, std::vector<std::array<Index, 3>>& out) {
+  if (!odd) {
     out.push_back({q[0], q[1], q[2]});
     out.push_back({q[0], q[2], q[3]});
   } else {
@@ -74,11 +78,36 @@ void split_quad(const std::vector<Vec3>& p, const std::array<Index, 4>& q, std::
   }
 }
 
+bool shorter_is_odd(const std::vector<Vec3>& p, const std::array<Index, 4>& q) {
+  return (p[q[0]] - p[q[2]]).squaredNorm() > (p[q[1]] - p[q[3]]).squaredNorm();
+}
+
+}  // namespace
+
+void split_quad(const std::vector<Vec3>& p, const std::array<Index, 4>& q, std::vector<std::array<Index, 3>>& out) {
+  split_along(q, shorter_is_odd(p, q), out);
+}
+
 TriMesh triangles_of(const MeshFile& file) {
   TriMesh t;
   t.positions = file.positions;
   t.faces = file.triangles;
-  for (const auto& q : file.quads) split_quad(file.positions, q, t.faces);
+  // Each quad along its shorter diagonal, unless that segment is an edge or another
+  // quad's split already: two quads sharing two edges (a doublet, which MeshLab's own
+  // triangle pairing leaves) were both split along the same corners, an edge of four
+  // triangles that cleaning refused as non-manifold.
+  auto key = [](Index a, Index b) { return a < b ? std::uint64_t(a) << 32 | b : std::uint64_t(b) << 32 | a; };
+  std::unordered_set<std::uint64_t> used;
+  used.reserve(6 * file.quads.size());
+  for (const auto& q : file.quads)
+    for (int k = 0; k < 4; ++k) used.insert(key(q[k], q[(k + 1) % 4]));
+  for (const auto& q : file.quads) {
+    bool odd = shorter_is_odd(file.positions, q);
+    const auto diagonal = [&](bool o) { return o ? key(q[1], q[3]) : key(q[0], q[2]); };
+    if (used.count(diagonal(odd)) && !used.count(diagonal(!odd))) odd = !odd;
+    used.insert(diagonal(odd));
+    split_along(q, odd, t.faces);
+  }
   return t;
 }
 
