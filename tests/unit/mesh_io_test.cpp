@@ -193,6 +193,13 @@ TEST(QuadInput, a_doublet_is_split_into_manifold_triangles) {
   const Input in = prepare_input(f, "doublet");
   EXPECT_TRUE(in.was_pure_quad);
   EXPECT_EQ(in.quads.n_faces(), 2u);
+
+  // The same with the second quad on its own copy of a (same position): cleaning merges
+  // the two, so the splits must already see them as one vertex.
+  MeshFile g = f;
+  g.positions.push_back(g.positions[a]);
+  g.quads[1] = {5, d, c, e};
+  EXPECT_NO_THROW(prepare_input(g, "doublet with a copy"));
 }
 
 TEST_F(MeshIo, bad_files_give_one_clear_error) {

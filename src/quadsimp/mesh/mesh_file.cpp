@@ -1,6 +1,7 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include "quadsimp/mesh/mesh_file.h"
 
+#include <algorithm>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -96,7 +97,26 @@ TriMesh triangles_of(const MeshFile& file) {
   // quad's split already: two quads sharing two edges (a doublet, which MeshLab's own
   // triangle pairing leaves) were both split along the same corners, an edge of four
   // triangles that cleaning refused as non-manifold.
-  auto key = [](Index a, Index b) { return a < b ? std::uint64_t(a) << 32 | b : std::uint64_t(b) << 32 | a; };
+  // Vertices at the same position count as one, as cleaning merges them afterwards: a
+  // quad file with a slit whose sides touch (our own output of a mesh MeshLab's
+  // subdivision had pinched) otherwise got the same split on both sides.
+  std::vector<Index> same;
+  if (!file.quads.empty()) {
+    const auto& p = file.positions;
+    std::vector<Index> order(p.size());
+    for (Index v = 0; v < Index(order.size()); ++v) order[v] = v;
+    const auto less = [&](Index a, Index b) {
+      return std::lexicographical_compare(p[a].data(), p[a].data() + 3, p[b].data(), p[b].data() + 3);
+    };
+    std::stable_sort(order.begin(), order.end(), less);
+    same.resize(p.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+      same[order[i]] = i > 0 && p[order[i]] == p[order[i - 1]] ? same[order[i - 1]] : order[i];
+  }
+  auto key = [&](Index a, Index b) {
+    a = same[a], b = same[b];
+    return a < b ? std::uint64_t(a) << 32 | b : std::uint64_t(b) << 32 | a;
+  };
   std::unordered_set<std::uint64_t> used;
   used.reserve(6 * file.quads.size());
   for (const auto& q : file.quads)
