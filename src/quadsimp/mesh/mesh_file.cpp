@@ -93,13 +93,11 @@ TriMesh triangles_of(const MeshFile& file) {
   TriMesh t;
   t.positions = file.positions;
   t.faces = file.triangles;
-  // Each quad along its shorter diagonal, unless that segment is an edge or another
-  // quad's split already: two quads sharing two edges (a doublet, which MeshLab's own
-  // triangle pairing leaves) were both split along the same corners, an edge of four
-  // triangles that cleaning refused as non-manifold.
-  // Vertices at the same position count as one, as cleaning merges them afterwards: a
-  // quad file with a slit whose sides touch (our own output of a mesh MeshLab's
-  // subdivision had pinched) otherwise got the same split on both sides.
+  // Two quads sharing two edges (a doublet, which MeshLab's own triangle pairing leaves)
+  // were both split along the same corners: an edge of four triangles, which cleaning
+  // refused as non-manifold. Vertices at one position count as one because cleaning
+  // merges them: a quad file whose slit has touching sides (our own output of a mesh
+  // that MeshLab's subdivision had pinched) got the same split on both sides.
   std::vector<Index> same;
   if (!file.quads.empty()) {
     const auto& p = file.positions;

@@ -29,7 +29,10 @@ MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array
 void split_quad(const std::vector<Vec3>& positions, const std::array<Index, 4>& q,
                 std::vector<std::array<Index, 3>>& triangles);
 
-//! The triangles of a mesh: its triangles, or its quads split along their shorter diagonal.
+//! The triangles of a mesh: its triangles, or its quads each split along its shorter
+//! diagonal, or along the other where the shorter one is already an edge or another
+//! quad's split (vertices at one position counted as one), so that no edge gets four
+//! triangles.
 TriMesh triangles_of(const MeshFile& file);
 
 }  // namespace qs
