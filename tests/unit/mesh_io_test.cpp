@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -200,6 +201,10 @@ TEST(QuadInput, a_doublet_is_split_into_manifold_triangles) {
   g.positions.push_back(g.positions[a]);
   g.quads[1] = {5, d, c, e};
   EXPECT_NO_THROW(prepare_input(g, "doublet with a copy"));
+
+  // A NaN corner stays out of the position order and is refused by cleaning after.
+  g.positions[5].x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(prepare_input(g, "doublet with a NaN"), InvalidInput);
 }
 
 TEST_F(MeshIo, bad_files_give_one_clear_error) {

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <unordered_map>
-#include <unordered_set>
 
 namespace qs {
 
@@ -79,6 +78,29 @@ void split_along(const std::array<Index, 4>& q, bool odd, std::vector<std::array
   }
 }
 
+// A set of 64-bit keys in one flat table (linear probing): the quads of a large input
+// put millions of edges in it, and a node per key cost a fifth of the load time.
+class KeySet {
+ public:
+  explicit KeySet(std::size_t n) {
+    std::size_t size = 16;
+    while (size < 2 * n) size *= 2;
+    slots_.assign(size, kEmpty);
+  }
+  bool contains(std::uint64_t k) const { return slots_[find(k)] == k; }
+  void insert(std::uint64_t k) { slots_[find(k)] = k; }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);  // no edge joins vertex kNone to itself
+  std::size_t find(std::uint64_t k) const {
+    const std::size_t mask = slots_.size() - 1;
+    std::size_t i = std::size_t((k * 0x9E3779B97F4A7C15ull) >> 20) & mask;
+    while (slots_[i] != kEmpty && slots_[i] != k) i = (i + 1) & mask;
+    return i;
+  }
+  std::vector<std::uint64_t> slots_;
+};
+
 bool shorter_is_odd(const std::vector<Vec3>& p, const std::array<Index, 4>& q) {
   return (p[q[0]] - p[q[2]]).squaredNorm() > (p[q[1]] - p[q[3]]).squaredNorm();
 }
@@ -100,29 +122,33 @@ TriMesh triangles_of(const MeshFile& file) {
   // that MeshLab's subdivision had pinched) got the same split on both sides.
   std::vector<Index> same;
   if (!file.quads.empty()) {
-    const auto& p = file.positions;
-    std::vector<Index> order(p.size());
-    for (Index v = 0; v < Index(order.size()); ++v) order[v] = v;
-    const auto less = [&](Index a, Index b) {
-      return std::lexicographical_compare(p[a].data(), p[a].data() + 3, p[b].data(), p[b].data() + 3);
-    };
-    std::stable_sort(order.begin(), order.end(), less);
-    same.resize(p.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-      same[order[i]] = i > 0 && p[order[i]] == p[order[i - 1]] ? same[order[i - 1]] : order[i];
+    // Sorted copies (position, then id), so that equal positions are neighbours and the
+    // lowest id of each comes first. NaN would break the order (cleaning refuses it
+    // afterwards): such vertices stay themselves.
+    same.resize(file.positions.size());
+    std::vector<std::pair<std::array<double, 3>, Index>> sorted;
+    sorted.reserve(same.size());
+    for (Index v = 0; v < Index(same.size()); ++v) {
+      const Vec3& p = file.positions[v];
+      same[v] = v;
+      if (p.allFinite()) sorted.push_back({{p.x(), p.y(), p.z()}, v});
+    }
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < sorted.size(); ++i)
+      same[sorted[i].second] =
+          i > 0 && sorted[i].first == sorted[i - 1].first ? same[sorted[i - 1].second] : sorted[i].second;
   }
   auto key = [&](Index a, Index b) {
     a = same[a], b = same[b];
     return a < b ? std::uint64_t(a) << 32 | b : std::uint64_t(b) << 32 | a;
   };
-  std::unordered_set<std::uint64_t> used;
-  used.reserve(6 * file.quads.size());
+  KeySet used(3 * file.quads.size());  // about 2 edges and 1 split per quad
   for (const auto& q : file.quads)
     for (int k = 0; k < 4; ++k) used.insert(key(q[k], q[(k + 1) % 4]));
   for (const auto& q : file.quads) {
     bool odd = shorter_is_odd(file.positions, q);
     const auto diagonal = [&](bool o) { return o ? key(q[1], q[3]) : key(q[0], q[2]); };
-    if (used.count(diagonal(odd)) && !used.count(diagonal(!odd))) odd = !odd;
+    if (used.contains(diagonal(odd)) && !used.contains(diagonal(!odd))) odd = !odd;
     used.insert(diagonal(odd));
     split_along(q, odd, t.faces);
   }
