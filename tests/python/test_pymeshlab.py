@@ -157,6 +157,18 @@ def test_layers_are_polygonal_for_meshlabs_own_filters(bunny_path):
         assert len(np.unique(np.round(out.face_normal_matrix(), 12), axis=0)) == out.face_number() // 2
 
 
+def test_saved_files_keep_the_quads(bunny_path, cli, tmp_path):
+    # The README's advice: OBJ and OFF as polygons, PLY with the faux flags.
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(bunny_path)
+    ms.meshing_quad_mesh_simplification(targetfacenum=1000)
+    for name, options in (("q.obj", {}), ("q.off", {}), ("q.ply", {"save_face_flag": True})):
+        ms.save_current_mesh(str(tmp_path / name), **options)
+        stats = json.loads(subprocess.run([cli, "stats", bunny_path, str(tmp_path / name), "--json", "--samples", "1000"],
+                                          check=True, capture_output=True, text=True).stdout)
+        assert stats["pure_quad"] and stats["faces"] == 1000, name
+
+
 def test_quads_from_meshlabs_own_triangle_pairing(bunny_path):
     # MeshLab's smart pairing leaves doublets (two quads on two shared edges) that a
     # split along each quad's shorter diagonal turned into a non-manifold edge.
