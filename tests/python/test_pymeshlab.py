@@ -164,8 +164,8 @@ def test_saved_files_keep_the_quads(bunny_path, cli, tmp_path):
     ms.meshing_quad_mesh_simplification(targetfacenum=1000)
     for name, options in (("q.obj", {}), ("q.off", {}), ("q.ply", {"save_face_flag": True})):
         ms.save_current_mesh(str(tmp_path / name), **options)
-        stats = json.loads(subprocess.run([cli, "stats", bunny_path, str(tmp_path / name), "--json", "--samples", "1000"],
-                                          check=True, capture_output=True, text=True).stdout)
+        command = [cli, "stats", bunny_path, str(tmp_path / name), "--json", "--samples", "1000"]
+        stats = json.loads(subprocess.run(command, check=True, capture_output=True, text=True).stdout)
         assert stats["pure_quad"] and stats["faces"] == 1000, name
 
 
