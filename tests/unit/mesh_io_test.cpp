@@ -202,6 +202,11 @@ TEST(QuadInput, a_doublet_is_split_into_manifold_triangles) {
   g.quads[1] = {5, d, c, e};
   EXPECT_NO_THROW(prepare_input(g, "doublet with a copy"));
 
+  // A corner out of range is not read before cleaning refuses it.
+  MeshFile h = f;
+  h.quads[1][3] = 9;
+  EXPECT_THROW(prepare_input(h, "doublet out of range"), InvalidInput);
+
   // A NaN corner stays out of the position order and is refused by cleaning after.
   g.positions[5].x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(prepare_input(g, "doublet with a NaN"), InvalidInput);

@@ -120,32 +120,26 @@ TriMesh triangles_of(const MeshFile& file) {
   // refused as non-manifold. Vertices at one position count as one because cleaning
   // merges them: a quad file whose slit has touching sides (our own output of a mesh
   // that MeshLab's subdivision had pinched) got the same split on both sides.
-  std::vector<Index> same;
-  if (!file.quads.empty()) {
-    // Sorted copies (position, then id), so that equal positions are neighbours and the
-    // lowest id of each comes first. NaN would break the order (cleaning refuses it
-    // afterwards): such vertices stay themselves.
-    same.resize(file.positions.size());
-    std::vector<std::pair<std::array<double, 3>, Index>> sorted;
-    sorted.reserve(same.size());
-    for (Index v = 0; v < Index(same.size()); ++v) {
-      const Vec3& p = file.positions[v];
-      same[v] = v;
-      if (p.allFinite()) sorted.push_back({{p.x(), p.y(), p.z()}, v});
-    }
-    std::sort(sorted.begin(), sorted.end());
-    for (std::size_t i = 0; i < sorted.size(); ++i)
-      same[sorted[i].second] =
-          i > 0 && sorted[i].first == sorted[i - 1].first ? same[sorted[i - 1].second] : sorted[i].second;
-  }
+  const Index n = Index(file.positions.size());
+  const std::vector<Index> same = file.quads.empty() ? std::vector<Index>() : first_equal_positions(file.positions);
+  // A corner out of range is for cleaning to refuse with its message, not to be read here.
+  const auto in_range = [&](const std::array<Index, 4>& q) {
+    return std::all_of(q.begin(), q.end(), [&](Index v) { return v < n; });
+  };
   auto key = [&](Index a, Index b) {
     a = same[a], b = same[b];
     return a < b ? std::uint64_t(a) << 32 | b : std::uint64_t(b) << 32 | a;
   };
-  KeySet used(3 * file.quads.size());  // about 2 edges and 1 split per quad
+  // At most 4 edges and 1 split per quad, under the 6 slots per quad KeySet makes of this.
+  KeySet used(3 * file.quads.size());
   for (const auto& q : file.quads)
-    for (int k = 0; k < 4; ++k) used.insert(key(q[k], q[(k + 1) % 4]));
+    if (in_range(q))
+      for (int k = 0; k < 4; ++k) used.insert(key(q[k], q[(k + 1) % 4]));
   for (const auto& q : file.quads) {
+    if (!in_range(q)) {
+      split_along(q, false, t.faces);
+      continue;
+    }
     bool odd = shorter_is_odd(file.positions, q);
     const auto diagonal = [&](bool o) { return o ? key(q[1], q[3]) : key(q[0], q[2]); };
     if (used.contains(diagonal(odd)) && !used.contains(diagonal(!odd))) odd = !odd;

@@ -99,22 +99,8 @@ void remove_unreferenced(TriMesh& m, CleanReport& r) {
 }
 
 void merge_duplicate_vertices(TriMesh& m, CleanReport& r) {
-  std::vector<Index> order(m.n_vertices());
-  std::iota(order.begin(), order.end(), Index(0));
-  auto less = [&](Index a, Index b) {
-    const Vec3 &p = m.positions[a], &q = m.positions[b];
-    if (p.x() != q.x()) return p.x() < q.x();
-    if (p.y() != q.y()) return p.y() < q.y();
-    if (p.z() != q.z()) return p.z() < q.z();
-    return a < b;
-  };
-  std::sort(order.begin(), order.end(), less);
-  std::vector<Index> map(m.n_vertices());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const bool same = i > 0 && m.positions[order[i]] == m.positions[order[i - 1]];
-    map[order[i]] = same ? map[order[i - 1]] : order[i];
-    if (same) ++r.merged_duplicate_vertices;
-  }
+  const std::vector<Index> map = first_equal_positions(m.positions);
+  for (Index v = 0; v < Index(map.size()); ++v) r.merged_duplicate_vertices += map[v] != v;
   for (auto& t : m.faces)
     for (Index& v : t) v = map[v];
 }
@@ -402,6 +388,24 @@ TriMesh split_in_four(const TriMesh& t) {
     out.faces.push_back({ab, bc, ca});
   }
   return out;
+}
+
+std::vector<Index> first_equal_positions(const std::vector<Vec3>& positions) {
+  // Sorted copies (position, then id), so that equal positions are neighbours and the
+  // lowest id of each comes first; a copy sorts faster than ids that each look up
+  // their position.
+  std::vector<Index> first(positions.size());
+  std::vector<std::pair<std::array<double, 3>, Index>> sorted;
+  sorted.reserve(first.size());
+  for (Index v = 0; v < Index(first.size()); ++v) {
+    const Vec3& p = positions[v];
+    first[v] = v;
+    if (p.allFinite()) sorted.push_back({{p.x(), p.y(), p.z()}, v});  // NaN would break the order
+  }
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 1; i < sorted.size(); ++i)
+    if (sorted[i].first == sorted[i - 1].first) first[sorted[i].second] = first[sorted[i - 1].second];
+  return first;
 }
 
 CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {

@@ -52,6 +52,10 @@ struct CleanReport {
 //!        component. `what` is one sentence; `source` (a file name) prefixes it.
 CleanReport clean(TriMesh& mesh, const std::string& source = "mesh", const LogFn& log = {});
 
+//! For each position, the lowest index of the positions equal to it (itself if none
+//! comes before it); non-finite positions map to themselves. clean() merges by it.
+std::vector<Index> first_equal_positions(const std::vector<Vec3>& positions);
+
 //! Renumbers faces along a Morton curve of their centroids, and vertices in the order
 //! the faces first use them; the surface is unchanged. The simplifier's queries jump
 //! from collapse to collapse and each one reads M0 and the quads around one place:
