@@ -237,6 +237,11 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
   EXPECT_FALSE(error_of(bad_index).empty());
+  // ... in a quad, which vcglib splits without checking (it crashed).
+  const std::string bad_quad = write("idxq.ply",
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 7\n");
+  EXPECT_NE(error_of(bad_quad).find("refers to a vertex that does not exist"), std::string::npos);
 
   for (const std::string& e : {error_of(path("missing.ply")), error_of(path("cut.ply"))}) {
     EXPECT_EQ(e.find(dir_.string()), 0u) << e;

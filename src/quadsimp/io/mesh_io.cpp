@@ -141,7 +141,7 @@ void load_vcg(const std::string& path, TMesh& m) {
 }
 
 // Triangles with their faux-edge bits, then quads rebuilt from the faux pairs.
-MeshFile regroup(const TMesh& m) {
+MeshFile regroup(const std::string& path, const TMesh& m) {
   std::vector<Vec3> positions;
   positions.reserve(m.vert.size());
   std::vector<int> vid(m.vert.size(), -1);
@@ -156,7 +156,13 @@ MeshFile regroup(const TMesh& m) {
   for (const auto& f : m.face) {
     if (f.IsD()) continue;
     std::array<Index, 3> t;
-    for (int k = 0; k < 3; ++k) t[k] = Index(vid[vcg::tri::Index(m, f.cV(k))]);
+    for (int k = 0; k < 3; ++k) {
+      // vcglib checks the indices of a PLY's triangles but not of the polygons it splits:
+      // a quad naming vertex 7 of 4 crashed here.
+      const std::size_t v = vcg::tri::Index(m, f.cV(k));
+      if (v >= m.vert.size() || vid[v] < 0) fail(path, "a face refers to a vertex that does not exist");
+      t[k] = Index(vid[v]);
+    }
     tris.push_back(t);
     faux.push_back(std::uint8_t(unsigned(f.IsF(0)) | unsigned(f.IsF(1)) << 1 | unsigned(f.IsF(2)) << 2));
   }
@@ -220,7 +226,7 @@ MeshFile read_mesh(const std::string& path) {
   TMesh m;
   load_vcg(path, m);
   if (m.vn == 0) fail(path, "the file holds no vertices (empty mesh)");
-  return regroup(m);
+  return regroup(path, m);
 }
 
 void write_quad_mesh(const std::string& path, const QuadMesh& mesh) {
