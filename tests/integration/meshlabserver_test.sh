@@ -181,6 +181,9 @@ else
   fail "the convert/fitmaps/quality script failed"; cat "$work/server.log"
 fi
 
+# The example script's simplification filter, to chain with MeshLab's own filters.
+simplification=$(sed -n '/<filter name="Quad Mesh Simplification">/,/<\/filter>/p' "$script")
+
 # 6. The layers come out polygonal, as MeshLab's own quad filters make them: MeshLab's
 #    polygonal planarity quality (which refuses triangle-only layers, and walks the faux
 #    edges through face-face adjacency) runs on the simplified and the converted torus.
@@ -189,8 +192,7 @@ planarity='<filter name="Per Face Quality according to Triangle shape and aspect
    enum_val1="inradius/circumradius" enum_val2="Mean ratio" enum_val3="Area" enum_val4="Texture Angle Distortion"
    enum_val5="Texture Area Distortion" enum_val6="Polygonal planarity (max)" enum_val7="Polygonal planarity (relative)"/>
  </filter>'
-for first in "$(sed -n '/<filter name="Quad Mesh Simplification">/,/<\/filter>/p' "$script" |
-                sed 's/value="3000"/value="500"/')" '<filter name="Convert to Pure Quad Mesh"/>'; do
+for first in "${simplification/value=\"3000\"/value=\"500\"}" '<filter name="Convert to Pure Quad Mesh"/>'; do
   printf '<!DOCTYPE FilterScript>\n<FilterScript>\n%s\n %s\n</FilterScript>\n' "$first" "$planarity" >"$work/planar.mlx"
   if server -i "$work/torus.ply" -o "$work/planar.ply" -m ff fq -s "$work/planar.mlx" -l "$work/planar.log" &&
      grep -q "property float quality" "$work/planar.ply"; then
@@ -204,8 +206,7 @@ done
 #    two shared edges) in the bunny, which our reference triangles once made non-manifold.
 {
   printf '<!DOCTYPE FilterScript>\n<FilterScript>\n <filter name="Tri to Quad by smart triangle pairing"/>\n'
-  sed -n '/<filter name="Quad Mesh Simplification">/,/<\/filter>/p' "$script"
-  printf '</FilterScript>\n'
+  printf '%s\n</FilterScript>\n' "$simplification"
 } >"$work/paired.mlx"
 if server -i "$bunny" -o "$work/paired.ply" -m ff -s "$work/paired.mlx" &&
    "$cli" stats "$bunny" "$work/paired.ply" --json --samples 20000 >"$work/paired.json" &&
