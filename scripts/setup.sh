@@ -40,8 +40,10 @@ fi
 # A venv with pymeshlab 2025.7 (PyPI): the MeshLab 2025.07 plugin links against the
 # libmeshlab-common.so inside its wheel, and the Python tests run in it.
 venv="${QS_VENV_DIR:-$here/.venv}"
-if ! "$venv/bin/python" -c "import pymeshlab, pytest, sys; sys.exit(0 if pymeshlab.__file__ else 1)" 2>/dev/null \
-   || ! "$venv/bin/python" -m pip show pymeshlab 2>/dev/null | grep -q "^Version: 2025.7$"; then
+# (One Python call: "pip show | grep -q" under pipefail failed whenever grep closed the
+# pipe before pip had finished writing, and the venv was rebuilt on every run.)
+if ! "$venv/bin/python" -c "import importlib.metadata as md, pymeshlab, pytest, sys
+sys.exit(md.version('pymeshlab') != '2025.7')" 2>/dev/null; then
   echo "setup: creating $venv with pymeshlab==2025.7"
   python3 -m venv "$venv" || die "could not create the Python venv $venv (python3-venv)."
   "$venv/bin/python" -m pip install -q --disable-pip-version-check "pymeshlab==2025.7" pytest \
