@@ -20,7 +20,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev qtscript5-dev libglew-dev
   meshlab xvfb xauth glmark2-data
-  python3 python3-venv python3-pip dpkg-dev
+  python3 python3-venv python3-pip dpkg-dev patch
 )
 
 missing=()
@@ -91,4 +91,12 @@ fetch bookworm "meshlab_2020.09+dfsg1.orig.tar.xz" \
 fetch sid "meshlab_2025.07~dfsg.orig.tar.xz" \
   d22c98d362f2a284e481af8dbfc272b2222f5b9c67b3cf8bec57d1c3161886f4 meshlab-2025.07
 rm -rf "$deps/download"
+
+# Fixes of ours to vcglib's readers (each patch says what it mends), applied once.
+for p in "$here"/scripts/patches/*.patch; do
+  if ! patch -d "$deps/meshlab-2025.07" -p1 -R -s -f --dry-run < "$p" >/dev/null 2>&1; then
+    patch -d "$deps/meshlab-2025.07" -p1 -N -s < "$p" >/dev/null || die "could not apply $p to $deps/meshlab-2025.07."
+    echo "setup: applied $(basename "$p")"
+  fi
+done
 echo "setup: done"

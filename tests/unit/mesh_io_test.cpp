@@ -133,10 +133,34 @@ TEST_F(MeshIo, quads_from_polygons_and_from_faux_flags) {
     ASSERT_TRUE(f.is_pure_quad());
     EXPECT_EQ(f.quads.size(), 1u);
   }
-  // A pentagon is not a quad: it is triangulated.
-  const std::string pent = write("p.obj", "v 0 0 0\nv 1 0 0\nv 2 1 0\nv 1 2 0\nv 0 1 0\nf 1 2 3 4 5\n");
-  EXPECT_FALSE(read_mesh(pent).is_pure_quad());
-  EXPECT_EQ(read_mesh(pent).triangles.size(), 3u);
+}
+
+TEST_F(MeshIo, polygons_of_five_corners_in_every_format) {
+  // Two convex pentagons of area 1.5 each, apart. vcglib's OFF reader put the triangles of
+  // such a face on the file's first five vertices (the second pentagon was lost).
+  const std::string v = "0 0 0\n1 0 0\n1 1 0\n0.5 2 0\n0 1 0\n5 0 1\n6 0 1\n6 1 1\n5.5 2 1\n5 1 1\n";
+  const std::string ply = write("p.ply",
+      "ply\nformat ascii 1.0\nelement vertex 10\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 2\nproperty list uchar int vertex_indices\nend_header\n" + v + "5 0 1 2 3 4\n5 5 6 7 8 9\n");
+  // The second face's count stands alone, its corners on the next line, as vcglib allows.
+  const std::string off = write("p.off", "OFF\n10 2 0\n" + v + "5 0 1 2 3 4\n5\n5 6 7 8 9\n");
+  std::string obj_text;
+  for (std::size_t b = 0, e; (e = v.find('\n', b)) != std::string::npos; b = e + 1) obj_text += "v " + v.substr(b, e - b + 1);
+  const std::string obj = write("p.obj", obj_text + "f 1 2 3 4 5\nf -5 -4 -3 -2 -1\n");
+  for (const auto& p : {ply, off, obj}) {
+    SCOPED_TRACE(p);
+    const MeshFile f = read_mesh(p);
+    EXPECT_FALSE(f.is_pure_quad());  // a pentagon is not a quad: it is triangulated
+    ASSERT_EQ(f.triangles.size(), 6u);
+    double area[2] = {0, 0};
+    for (const auto& t : f.triangles) {
+      const int pentagon = t[0] / 5;
+      for (Index c : t) EXPECT_EQ(int(c) / 5, pentagon);
+      area[pentagon] += 0.5 * (f.positions[t[1]] - f.positions[t[0]]).cross(f.positions[t[2]] - f.positions[t[0]]).norm();
+    }
+    EXPECT_NEAR(area[0], 1.5, 1e-9);
+    EXPECT_NEAR(area[1], 1.5, 1e-9);
+  }
 }
 
 TEST_F(MeshIo, quads_that_share_a_diagonal_are_read_back_as_quads) {
@@ -241,7 +265,34 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
   const std::string bad_quad = write("idxq.ply",
       "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 7\n");
-  EXPECT_NE(error_of(bad_quad).find("refers to a vertex that does not exist"), std::string::npos);
+  EXPECT_NE(error_of(bad_quad).find("unreadable PLY (Bad vertex index in face)"), std::string::npos);
+
+  // Corners naming no vertex: vcglib's readers look them up unchecked (all crashed).
+  const std::string square = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+  const std::string ply_head =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string obj_square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {write("far.ply", ply_head + square + "4 0 1 2 100000000\n"), "unreadable PLY (Bad vertex index in face)"},
+      {write("neg.ply", ply_head + square + "4 0 1 2 -100000000\n"), "unreadable PLY (Bad vertex index in face)"},
+      {write("far.off", "OFF\n4 1 0\n" + square + "4 0 1 2 100000000\n"),
+       "line 7: face corner 100000000 names no vertex (the file has 4)"},
+      {write("neg.off", "OFF\n4 1 0\n" + square + "3 0 -1 2\n"), "line 7: face corner -1 names no vertex"},
+      {write("short.off", "OFF\n4 1 0\n" + square + "3 0 1\n"), "line 7: a face of 3 corners lists 2"},
+      {write("one.off", "OFF\n4 1 0\n" + square + "1 0\n"), "line 7: a face listed with only 1 corner(s)"},
+      {write("far.obj", obj_square + "f 1 2 3 100000000\n"),
+       "line 5: face corner 100000000 names no vertex (only 4 come before it)"},
+      {write("next.obj", obj_square + "f 1 2 5\n"), "line 5: face corner 5 names no vertex (only 4 come before it)"},
+      {write("ahead.obj", "v 0 0 0\nf 1 2 3\nv 1 0 0\nv 0 1 0\n"), "line 2: face corner 2 names no vertex"},
+      {write("neg.obj", obj_square + "f -1 -2 -5\n"), "line 5: face corner -5 names no vertex (only 4 come before it)"},
+      {write("zero.obj", obj_square + "f 0 1 2\n"), "line 5: face corner 0 names no vertex"},
+      {write("word.obj", obj_square + "f 1/1 2// x3\n"), "line 5: 'x3' is not a vertex number"},
+  };
+  for (const auto& [file, message] : cases) EXPECT_NE(error_of(file).find(message), std::string::npos) << error_of(file);
+  // What the corner check must let through: negative OBJ corners, which count back from
+  // the line they are on.
+  EXPECT_EQ(read_mesh(write("back.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -3\nv 1 1 0\nf -1 -2 -3\n")).triangles.size(), 2u);
 
   for (const std::string& e : {error_of(path("missing.ply")), error_of(path("cut.ply"))}) {
     EXPECT_EQ(e.find(dir_.string()), 0u) << e;

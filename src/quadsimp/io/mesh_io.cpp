@@ -7,13 +7,15 @@
 #include "quadsimp/io/mesh_io.h"
 
 #include <algorithm>
-#include <cctype>
 #include <charconv>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <string_view>
+#include <system_error>
+#include <utility>
+#include <vector>
 
 #include <vcg/complex/complex.h>
 #include <wrap/io_trimesh/export_obj.h>
@@ -55,57 +57,141 @@ class PMesh : public vcg::tri::TriMesh<std::vector<PVertex>, std::vector<PFace>>
   throw InvalidInput(path + ": " + why);
 }
 
-// vcglib's OBJ and OFF readers take a coordinate that is not a number for 0 (atof), so a
-// damaged file loaded as a mesh with vertices piled at the origin. The vertex lines are
-// checked first: the first three fields of each must be numbers.
-void check_vertex_numbers(const std::string& path, const std::string& ext) {
-  std::ifstream in(path);
-  std::string line;
-  long lineno = 0, off_vertices = -1;  // OFF: vertex lines still to read, once counted
-  bool off_header = false;
-  auto fields = [](const std::string& l, std::size_t from, int n, std::string& bad) {
-    const char* c = l.c_str() + from;
-    for (int i = 0; i < n; ++i) {
-      while (*c == ' ' || *c == '\t') ++c;
-      const char* start = *c == '+' ? c + 1 : c;  // from_chars takes no '+', strtod does
-      double x;
-      const char* end = std::from_chars(start, l.c_str() + l.size(), x).ptr;
-      if (end == start || (*end && !std::isspace(static_cast<unsigned char>(*end)))) {
-        const char* stop = c;
-        while (*stop && !std::isspace(static_cast<unsigned char>(*stop))) ++stop;
-        bad = std::string(c, stop);
-        return false;
-      }
-      c = end;
-    }
-    return true;
-  };
-  std::string bad;
-  while (std::getline(in, line)) {
-    ++lineno;
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    bool ok = true;
-    if (ext == "obj") {
-      if (line[first] != 'v' || first + 1 >= line.size() || !std::isspace(static_cast<unsigned char>(line[first + 1])))
-        continue;
-      ok = fields(line, first + 1, 3, bad);
-    } else if (!off_header) {  // "OFF", "COFF", ... possibly followed by the counts
-      off_header = true;
-      const std::size_t word_end = line.find_first_of(" \t\r", first);
-      if (word_end != std::string::npos && line.find_first_not_of(" \t\r", word_end) != std::string::npos)
-        off_vertices = std::strtol(line.c_str() + word_end, nullptr, 10);
-    } else if (off_vertices < 0) {
-      off_vertices = std::strtol(line.c_str() + first, nullptr, 10);
-    } else if (off_vertices > 0) {
-      --off_vertices;
-      ok = fields(line, first, 3, bad);
-    } else {
-      break;  // the faces: vcglib checks their indices
-    }
-    if (!ok) fail(path, "line " + std::to_string(lineno) + ": '" + bad + "' is not a number (a vertex coordinate)");
+// vcglib's OBJ and OFF readers trust what they read: a coordinate that is not a number
+// becomes 0 (atof), so a damaged file loaded with vertices piled at the origin, and a
+// face corner naming a vertex that does not exist is followed into memory the mesh does
+// not own (a crash, or a face on garbage). So the text is checked first, line by line:
+// the first three fields of each vertex line must be numbers, every corner of a face a
+// vertex of the file.
+class TextMeshCheck {
+ public:
+  TextMeshCheck(std::string path, bool obj) : path_(std::move(path)), obj_(obj) {}
+
+  void run() {
+    std::ifstream in(path_);
+    std::string line;
+    while (next_line(in, line)) obj_ ? obj_line() : off_line(in);
   }
-}
+
+ private:
+  bool next_line(std::ifstream& in, std::string& line) {
+    while (std::getline(in, line)) {
+      ++lineno_;
+      tokens_.clear();
+      for (std::size_t b = line.find_first_not_of(" \t\r"); b != std::string::npos;) {
+        const std::size_t e = std::min(line.find_first_of(" \t\r", b), line.size());
+        tokens_.emplace_back(line.data() + b, e - b);
+        b = line.find_first_not_of(" \t\r", e);
+      }
+      if (!tokens_.empty() && tokens_[0][0] != '#') return true;
+    }
+    return false;
+  }
+
+  [[noreturn]] void fail_line(long line, const std::string& why) const {
+    fail(path_, "line " + std::to_string(line) + ": " + why);
+  }
+  [[noreturn]] void bad_corner(long long corner, const std::string& why) const {
+    fail_line(lineno_, "face corner " + std::to_string(corner) + " names no vertex (" + why + ")");
+  }
+
+  static bool parse(std::string_view t, double& x) {
+    if (!t.empty() && t[0] == '+') t.remove_prefix(1);  // from_chars takes no '+', strtod does
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), x);
+    return r.ec == std::errc() && r.ptr == t.data() + t.size();
+  }
+  static bool parse(std::string_view t, long long& x) {
+    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), x);
+    return r.ec == std::errc() && r.ptr == t.data() + t.size();
+  }
+
+  // Tokens [from, from + 3) are coordinates; a missing one is left to vcglib's own check.
+  void check_coordinates(std::size_t from) const {
+    double x;
+    for (std::size_t i = from; i < std::min(from + 3, tokens_.size()); ++i)
+      if (!parse(tokens_[i], x)) fail_line(lineno_, "'" + std::string(tokens_[i]) + "' is not a number (a vertex coordinate)");
+  }
+
+  long long corner_at(std::size_t i) const {
+    long long c;
+    if (!parse(tokens_[i].substr(0, tokens_[i].find('/')), c))
+      fail_line(lineno_, "'" + std::string(tokens_[i]) + "' is not a vertex number (a face corner)");
+    return c;
+  }
+
+  void obj_line() {
+    const std::string_view kw = tokens_[0];
+    if (kw == "v") {
+      check_coordinates(1);
+      ++n_vertices_;
+    } else if (kw == "f" || kw == "q") {  // "q": a quad of the zero-based QOBJ variant
+      // Corners count from 1, or back from -1, over the vertices above the line; vcglib
+      // dropped a triangle naming one further down without a word.
+      for (std::size_t i = 1; i < tokens_.size(); ++i) {
+        long long c = corner_at(i);
+        if (kw == "q" && c >= 0) ++c;
+        if (c == 0 || (c < 0 ? -c : c) > n_vertices_)
+          bad_corner(c, "only " + std::to_string(n_vertices_) + " come before it");
+      }
+    }
+  }
+
+  // OFF: "[C][N][ST]OFF [nv nf ne]", counts on the next line if not there, nv vertex
+  // lines, then nf face lines "n v_0 .. v_n-1 [colour]" (vcglib lets the corners of a
+  // face whose count stands alone continue on the next line).
+  void off_line(std::ifstream& in) {
+    if (state_ == Off::header) {
+      state_ = Off::counts;
+      if (tokens_.size() == 1) return;
+      tokens_.erase(tokens_.begin());
+    }
+    if (state_ == Off::counts) {
+      long long nf = 0;
+      if (tokens_.size() < 2 || !parse(tokens_[0], n_vertices_) || !parse(tokens_[1], nf)) {
+        state_ = Off::done;  // vcglib refuses the file itself
+        return;
+      }
+      vertices_left_ = n_vertices_;
+      faces_left_ = nf;
+      state_ = Off::vertices;
+      return;
+    }
+    if (vertices_left_ > 0) {
+      --vertices_left_;
+      check_coordinates(0);
+      return;
+    }
+    if (faces_left_ <= 0) return;
+    --faces_left_;
+    long long n;
+    if (!parse(tokens_[0], n)) fail_line(lineno_, "'" + std::string(tokens_[0]) + "' is not a corner count (a face)");
+    if (n < 2) fail_line(lineno_, "a face listed with only " + std::to_string(n) + " corner(s)");
+    std::size_t first = 1;
+    std::string more;  // holds the corners when the count stands alone
+    if (tokens_.size() == 1) {
+      if (!next_line(in, more)) fail_line(lineno_, "a face without its corners");
+      first = 0;
+    }
+    const std::size_t listed = tokens_.size() - first;
+    if (listed < std::size_t(n))
+      fail_line(lineno_, "a face of " + std::to_string(n) + " corners lists " + std::to_string(listed));
+    for (std::size_t i = first; i < first + std::size_t(n); ++i) {
+      const long long c = corner_at(i);
+      if (c < 0 || c >= n_vertices_) bad_corner(c, "the file has " + std::to_string(n_vertices_));
+    }
+  }
+
+  enum class Off { header, counts, vertices, done };
+
+  std::string path_;
+  bool obj_;
+  long lineno_ = 0;
+  std::vector<std::string_view> tokens_;
+  long long n_vertices_ = 0;  // OBJ: so far; OFF: as counted in the header
+  Off state_ = Off::header;
+  long long vertices_left_ = 0, faces_left_ = 0;
+};
 
 void load_vcg(const std::string& path, TMesh& m) {
   const std::string ext = extension_of(path);
@@ -121,13 +207,13 @@ void load_vcg(const std::string& path, TMesh& m) {
     const int err = vcg::tri::io::ImporterPLY<TMesh>::Open(m, path.c_str(), mask);
     if (err != 0) fail(path, std::string("unreadable PLY (") + vcg::tri::io::ImporterPLY<TMesh>::ErrorMsg(err) + ")");
   } else if (ext == "obj") {
-    check_vertex_numbers(path, ext);
+    TextMeshCheck(path, ext == "obj").run();
     vcg::tri::io::ImporterOBJ<TMesh>::Info info;
     const int err = vcg::tri::io::ImporterOBJ<TMesh>::Open(m, path.c_str(), info);
     if (err != 0 && vcg::tri::io::ImporterOBJ<TMesh>::ErrorCritical(err))
       fail(path, std::string("unreadable OBJ (") + vcg::tri::io::ImporterOBJ<TMesh>::ErrorMsg(err) + ")");
   } else if (ext == "off") {
-    check_vertex_numbers(path, ext);
+    TextMeshCheck(path, ext == "obj").run();
     int mask = 0;
     const int err = vcg::tri::io::ImporterOFF<TMesh>::Open(m, path.c_str(), mask);
     if (err != 0) fail(path, std::string("unreadable OFF (") + vcg::tri::io::ImporterOFF<TMesh>::ErrorMsg(err) + ")");
@@ -157,8 +243,8 @@ MeshFile regroup(const std::string& path, const TMesh& m) {
     if (f.IsD()) continue;
     std::array<Index, 3> t;
     for (int k = 0; k < 3; ++k) {
-      // vcglib checks the indices of a PLY's triangles but not of the polygons it splits:
-      // a quad naming vertex 7 of 4 crashed here.
+      // Unpatched, vcglib's PLY reader passes a polygon's corner that names no vertex
+      // (scripts/patches): refused here rather than followed, whatever vcglib did.
       const std::size_t v = vcg::tri::Index(m, f.cV(k));
       if (v >= m.vert.size() || vid[v] < 0) fail(path, "a face refers to a vertex that does not exist");
       t[k] = Index(vid[v]);
