@@ -241,9 +241,10 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
   EXPECT_NE(error_of(write("empty.ply", "")).find("empty"), std::string::npos);
   EXPECT_NE(error_of(write("x.xyz", "1 2 3\n")).find("unknown format"), std::string::npos);
   EXPECT_NE(error_of(write("junk.ply", "this is not a ply file\n")).find("unreadable PLY"), std::string::npos);
-  EXPECT_NE(error_of(write("junk.off", "OFF\n3 1 0\n0 0 0\n")).find("unreadable OFF"), std::string::npos);
+  EXPECT_NE(error_of(write("junk.off", "OFF\n3 1 0\n0 0 0\n")).find("the file ends after 1 of its 3 vertices"),
+            std::string::npos);
 
-  // A coordinate that is not a number: vcglib's OBJ and OFF readers took it for 0.
+  // A coordinate that is not a number (vcglib's OBJ and OFF readers took it for 0).
   EXPECT_NE(error_of(write("word.obj", "v 0 0 0\nv 1 0 0\nv abc 1 0\nf 1 2 3\n")).find("line 3: 'abc' is not a number"),
             std::string::npos);
   EXPECT_NE(error_of(write("word.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0.5x\n3 0 1 2\n")).find("line 5: '0.5x' is not a number"),
@@ -288,6 +289,19 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
       {write("neg.obj", obj_square + "f -1 -2 -5\n"), "line 5: face corner -5 names no vertex (only 4 come before it)"},
       {write("zero.obj", obj_square + "f 0 1 2\n"), "line 5: face corner 0 names no vertex"},
       {write("word.obj", obj_square + "f 1/1 2// x3\n"), "line 5: 'x3' is not a vertex number"},
+      // OFF headers and counts that cannot be read as stated.
+      {write("minus.off", "OFF\n4 -1 0\n" + square), "line 2: no vertex and face counts"},
+      {write("nocount.off", "OFF\n"), "the file ends before its vertex and face counts"},
+      {write("four.off", "4OFF\n4 1 0\n"), "line 1: '4OFF': only three-dimensional OFF is read"},
+      {write("binary.off", "OFF BINARY\n"), "line 1: binary OFF is not read"},
+      {write("ply.off", "ply\n"), "line 1: 'ply' is not an OFF header"},
+      {write("few.off", "OFF\n4 2 0\n" + square + "3 0 1 2\n"), "the file ends after 1 of its 2 faces"},
+      {write("alone.off", "OFF\n4 1 0\n" + square + "3\n"), "the file ends before the corners of its last face"},
+      {write("flat.off", "OFF\n4 1 0\n0 0\n"), "line 3: a vertex needs three coordinates"},
+      {write("huge.ply", "ply\nformat ascii 1.0\nelement vertex 300000000\nproperty float x\nend_header\n0\n"),
+       "unreadable PLY (its header counts 300000000 'vertex' elements in a file of"},
+      {write("nocount.ply", "ply\nformat ascii 1.0\nelement vertex\nproperty float x\nend_header\n0\n"),
+       "unreadable PLY (Syntax error on header)"},
   };
   for (const auto& [file, message] : cases) EXPECT_NE(error_of(file).find(message), std::string::npos) << error_of(file);
   // What the corner check must let through: negative OBJ corners, which count back from
@@ -312,6 +326,27 @@ TEST_F(MeshIo, text_files_with_comments_colours_and_signs_are_read) {
     EXPECT_EQ(f.positions.size(), 4u) << p;
     EXPECT_EQ(f.positions[2], Vec3(1, 1, 0)) << p;
   }
+}
+
+TEST_F(MeshIo, off_variants_are_read) {
+  // Normals (NOFF), a face colour, an edge among the faces (two corners: skipped), comments
+  // after the fields, counts glued to the keyword (as some OFF files have them).
+  const std::string faces = "3 0 1 2 0.5 0.5 0.5 1\n2 0 2\n3 0 2 3 # second half\n";
+  const std::string noff = write("n.off", "NOFF\n# counts\n\n4 3 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n1 1 0 0 0 1\n"
+                                          "0 1 0 0 0 1\n" + faces);
+  const std::string glued = write("g.off", "OFF4 3 0\n0 0 0\n1 0 0\n1 1 0 # corner\n0 1 0\n" + faces);
+  for (const std::string& p : {noff, glued}) {
+    SCOPED_TRACE(p);
+    const MeshFile f = read_mesh(p);
+    ASSERT_EQ(f.positions.size(), 4u);
+    EXPECT_EQ(f.positions[2], Vec3(1, 1, 0));
+    ASSERT_EQ(f.triangles.size(), 2u);
+    EXPECT_EQ(f.triangles[1], (std::array<Index, 3>{0, 2, 3}));
+  }
+  // A quad stays a quad, whatever comes after the faces.
+  const MeshFile q = read_mesh(write("q.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 3 2 1 0\nanything\n"));
+  ASSERT_TRUE(q.is_pure_quad());
+  expect_same_cycle(q.quads[0], {3, 2, 1, 0});
 }
 
 TEST_F(MeshIo, load_input_refuses_point_clouds_and_nan) {

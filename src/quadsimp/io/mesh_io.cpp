@@ -3,11 +3,12 @@
 // The only file that sees vcglib's I/O. vcglib triangulates polygons on import and
 // marks the inner edges "faux"; MeshLab stores its quads the same way (and writes the
 // flags to PLY with -m ff). So one path serves every format: read triangles with
-// face flags, then regroup triangles joined by a faux edge into polygons.
+// face flags, then regroup triangles joined by a faux edge into polygons. OFF is read
+// by read_off.cpp (why is said there) into the same form.
 #include "quadsimp/io/mesh_io.h"
 
 #include <algorithm>
-#include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -22,10 +23,11 @@
 #include <wrap/io_trimesh/export_off.h>
 #include <wrap/io_trimesh/export_ply.h>
 #include <wrap/io_trimesh/import_obj.h>
-#include <wrap/io_trimesh/import_off.h>
 #include <wrap/io_trimesh/import_ply.h>
 #include <wrap/io_trimesh/import_stl.h>
 
+#include "quadsimp/io/read_off.h"
+#include "quadsimp/io/text_fields.h"
 #include "quadsimp/util/errors.h"
 
 namespace qs {
@@ -57,166 +59,104 @@ class PMesh : public vcg::tri::TriMesh<std::vector<PVertex>, std::vector<PFace>>
   throw InvalidInput(path + ": " + why);
 }
 
-// vcglib's OBJ and OFF readers trust what they read: a coordinate that is not a number
-// becomes 0 (atof), so a damaged file loaded with vertices piled at the origin, and a
-// face corner naming a vertex that does not exist is followed into memory the mesh does
-// not own (a crash, or a face on garbage). So the text is checked first, line by line:
-// the first three fields of each vertex line must be numbers, every corner of a face a
-// vertex of the file.
-class TextMeshCheck {
+// vcglib's OBJ reader trusts what it reads: a coordinate that is not a number becomes 0
+// (atof), so a damaged file loaded with vertices piled at the origin, and a face corner
+// naming no vertex was followed into memory the mesh does not own (a crash), or its
+// triangle dropped without a word. So the lines are checked first: the first three
+// fields of each vertex must be numbers, and every face corner a vertex above its line
+// (counted from 1, or back from -1).
+class ObjCheck {
  public:
-  TextMeshCheck(std::string path, bool obj) : path_(std::move(path)), obj_(obj) {}
+  explicit ObjCheck(std::string path) : path_(std::move(path)) {}
 
   void run() {
     std::ifstream in(path_);
     std::string line;
-    while (next_line(in, line)) obj_ ? obj_line() : off_line(in);
+    while (next_line(in, line)) {
+      const std::string_view kw = tokens_[0];
+      if (kw == "v") {
+        check_coordinates();
+        ++n_vertices_;
+      } else if (kw == "f" || kw == "q") {  // "q": a quad of the zero-based QOBJ variant
+        for (std::size_t i = 1; i < tokens_.size(); ++i) check_corner(i, kw == "q");
+      }
+    }
   }
 
  private:
+  // Not '#' within a line: vcglib reads "f 1 2 3 # note" as five corners.
   bool next_line(std::ifstream& in, std::string& line) {
     while (std::getline(in, line)) {
       ++lineno_;
-      tokens_.clear();
-      for (std::size_t b = line.find_first_not_of(" \t\r"); b != std::string::npos;) {
-        const std::size_t e = std::min(line.find_first_of(" \t\r", b), line.size());
-        tokens_.emplace_back(line.data() + b, e - b);
-        b = line.find_first_not_of(" \t\r", e);
-      }
+      detail::split_fields(line, tokens_);
       if (!tokens_.empty() && tokens_[0][0] != '#') return true;
     }
     return false;
   }
 
-  [[noreturn]] void fail_line(long line, const std::string& why) const {
-    fail(path_, "line " + std::to_string(line) + ": " + why);
-  }
-  [[noreturn]] void bad_corner(long long corner, const std::string& why) const {
-    fail_line(lineno_, "face corner " + std::to_string(corner) + " names no vertex (" + why + ")");
+  [[noreturn]] void fail_line(const std::string& why) const {
+    fail(path_, "line " + std::to_string(lineno_) + ": " + why);
   }
 
-  static bool parse(std::string_view t, double& x) {
-    if (!t.empty() && t[0] == '+') t.remove_prefix(1);  // from_chars takes no '+', strtod does
-    const auto r = std::from_chars(t.data(), t.data() + t.size(), x);
-    return r.ec == std::errc() && r.ptr == t.data() + t.size();
-  }
-  static bool parse(std::string_view t, long long& x) {
-    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
-    const auto r = std::from_chars(t.data(), t.data() + t.size(), x);
-    return r.ec == std::errc() && r.ptr == t.data() + t.size();
-  }
-
-  // Tokens [from, from + 3) are coordinates; a missing one is left to vcglib's own check.
-  void check_coordinates(std::size_t from) const {
+  // A missing coordinate is left to vcglib's own check.
+  void check_coordinates() const {
     double x;
-    for (std::size_t i = from; i < std::min(from + 3, tokens_.size()); ++i)
-      if (!parse(tokens_[i], x)) fail_line(lineno_, "'" + std::string(tokens_[i]) + "' is not a number (a vertex coordinate)");
+    for (std::size_t i = 1; i < std::min<std::size_t>(4, tokens_.size()); ++i)
+      if (!detail::parse_number(tokens_[i], x)) fail_line("'" + std::string(tokens_[i]) + "' is not a number (a vertex coordinate)");
   }
 
-  long long corner_at(std::size_t i) const {
+  void check_corner(std::size_t i, bool zero_based) const {
     long long c;
-    if (!parse(tokens_[i].substr(0, tokens_[i].find('/')), c))
-      fail_line(lineno_, "'" + std::string(tokens_[i]) + "' is not a vertex number (a face corner)");
-    return c;
+    if (!detail::parse_number(tokens_[i].substr(0, tokens_[i].find('/')), c))
+      fail_line("'" + std::string(tokens_[i]) + "' is not a vertex number (a face corner)");
+    if (zero_based && c >= 0) ++c;
+    if (c == 0 || (c < 0 ? -c : c) > n_vertices_)
+      fail_line("face corner " + std::to_string(c) + " names no vertex (only " + std::to_string(n_vertices_) +
+                " come before it)");
   }
-
-  void obj_line() {
-    const std::string_view kw = tokens_[0];
-    if (kw == "v") {
-      check_coordinates(1);
-      ++n_vertices_;
-    } else if (kw == "f" || kw == "q") {  // "q": a quad of the zero-based QOBJ variant
-      // Corners count from 1, or back from -1, over the vertices above the line; vcglib
-      // dropped a triangle naming one further down without a word.
-      for (std::size_t i = 1; i < tokens_.size(); ++i) {
-        long long c = corner_at(i);
-        if (kw == "q" && c >= 0) ++c;
-        if (c == 0 || (c < 0 ? -c : c) > n_vertices_)
-          bad_corner(c, "only " + std::to_string(n_vertices_) + " come before it");
-      }
-    }
-  }
-
-  // OFF: "[C][N][ST]OFF [nv nf ne]", counts on the next line if not there, nv vertex
-  // lines, then nf face lines "n v_0 .. v_n-1 [colour]" (vcglib lets the corners of a
-  // face whose count stands alone continue on the next line).
-  void off_line(std::ifstream& in) {
-    if (state_ == Off::header) {
-      state_ = Off::counts;
-      if (tokens_.size() == 1) return;
-      tokens_.erase(tokens_.begin());
-    }
-    if (state_ == Off::counts) {
-      long long nf = 0;
-      if (tokens_.size() < 2 || !parse(tokens_[0], n_vertices_) || !parse(tokens_[1], nf)) {
-        state_ = Off::done;  // vcglib refuses the file itself
-        return;
-      }
-      vertices_left_ = n_vertices_;
-      faces_left_ = nf;
-      state_ = Off::vertices;
-      return;
-    }
-    if (vertices_left_ > 0) {
-      --vertices_left_;
-      check_coordinates(0);
-      return;
-    }
-    if (faces_left_ <= 0) return;
-    --faces_left_;
-    long long n;
-    if (!parse(tokens_[0], n)) fail_line(lineno_, "'" + std::string(tokens_[0]) + "' is not a corner count (a face)");
-    if (n < 2) fail_line(lineno_, "a face listed with only " + std::to_string(n) + " corner(s)");
-    std::size_t first = 1;
-    std::string more;  // holds the corners when the count stands alone
-    if (tokens_.size() == 1) {
-      if (!next_line(in, more)) fail_line(lineno_, "a face without its corners");
-      first = 0;
-    }
-    const std::size_t listed = tokens_.size() - first;
-    if (listed < std::size_t(n))
-      fail_line(lineno_, "a face of " + std::to_string(n) + " corners lists " + std::to_string(listed));
-    for (std::size_t i = first; i < first + std::size_t(n); ++i) {
-      const long long c = corner_at(i);
-      if (c < 0 || c >= n_vertices_) bad_corner(c, "the file has " + std::to_string(n_vertices_));
-    }
-  }
-
-  enum class Off { header, counts, vertices, done };
 
   std::string path_;
-  bool obj_;
   long lineno_ = 0;
   std::vector<std::string_view> tokens_;
-  long long n_vertices_ = 0;  // OBJ: so far; OFF: as counted in the header
-  Off state_ = Off::header;
-  long long vertices_left_ = 0, faces_left_ = 0;
+  long long n_vertices_ = 0;
 };
+
+void check_readable(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) fail(path, "cannot be opened for reading");
+  if (probe.peek() == std::ifstream::traits_type::eof()) fail(path, "the file is empty");
+}
+
+// vcglib allocates all the elements a PLY header counts before reading one, so a damaged
+// count took memory for it first: 300,000,000 vertices in a 200-byte file ran 32 s and
+// took 9 GB before "Unexpected EOF", 2,147,483,647 ended in bad_alloc. An element with a
+// property takes at least one byte of the file.
+void check_ply_counts(const std::string& path) {
+  vcg::ply::PlyFile header;
+  if (header.Open(path.c_str(), vcg::ply::PlyFile::MODE_READ) != 0) return;  // the importer says why
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  for (const auto& e : header.elements)
+    if (!e.props.empty() && (e.number < 0 || std::uintmax_t(e.number) > bytes))
+      fail(path, "unreadable PLY (its header counts " + std::to_string(e.number) + " '" + e.name +
+                     "' elements in a file of " + std::to_string(bytes) + " bytes)");
+}
 
 void load_vcg(const std::string& path, TMesh& m) {
   const std::string ext = extension_of(path);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
-  {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) fail(path, "cannot be opened for reading");
-    if (probe.peek() == std::ifstream::traits_type::eof()) fail(path, "the file is empty");
-  }
   if (ext == "ply") {
+    check_ply_counts(path);
     int mask = 0;
     const int err = vcg::tri::io::ImporterPLY<TMesh>::Open(m, path.c_str(), mask);
     if (err != 0) fail(path, std::string("unreadable PLY (") + vcg::tri::io::ImporterPLY<TMesh>::ErrorMsg(err) + ")");
   } else if (ext == "obj") {
-    TextMeshCheck(path, ext == "obj").run();
+    ObjCheck(path).run();
     vcg::tri::io::ImporterOBJ<TMesh>::Info info;
     const int err = vcg::tri::io::ImporterOBJ<TMesh>::Open(m, path.c_str(), info);
     if (err != 0 && vcg::tri::io::ImporterOBJ<TMesh>::ErrorCritical(err))
       fail(path, std::string("unreadable OBJ (") + vcg::tri::io::ImporterOBJ<TMesh>::ErrorMsg(err) + ")");
-  } else if (ext == "off") {
-    TextMeshCheck(path, ext == "obj").run();
-    int mask = 0;
-    const int err = vcg::tri::io::ImporterOFF<TMesh>::Open(m, path.c_str(), mask);
-    if (err != 0) fail(path, std::string("unreadable OFF (") + vcg::tri::io::ImporterOFF<TMesh>::ErrorMsg(err) + ")");
   } else if (ext == "stl") {
     int mask = 0;
     const int err = vcg::tri::io::ImporterSTL<TMesh>::Open(m, path.c_str(), mask);
@@ -309,10 +249,17 @@ std::string extension_of(const std::string& path) {
 }
 
 MeshFile read_mesh(const std::string& path) {
-  TMesh m;
-  load_vcg(path, m);
-  if (m.vn == 0) fail(path, "the file holds no vertices (empty mesh)");
-  return regroup(path, m);
+  check_readable(path);
+  MeshFile file;
+  if (extension_of(path) == "off") {
+    file = read_off(path);
+  } else {
+    TMesh m;
+    load_vcg(path, m);
+    file = regroup(path, m);
+  }
+  if (file.positions.empty()) fail(path, "the file holds no vertices (empty mesh)");
+  return file;
 }
 
 void write_quad_mesh(const std::string& path, const QuadMesh& mesh) {
