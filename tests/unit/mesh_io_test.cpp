@@ -37,6 +37,13 @@ class MeshIo : public ::testing::Test {
   fs::path dir_;
 };
 
+// An ASCII PLY header: nv vertices (x y z), nf faces (a corner list, then `face_extra`).
+std::string ply_header(int nv, int nf, const std::string& face_extra = "") {
+  return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(nv) +
+         "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(nf) +
+         "\nproperty list uchar int vertex_indices\n" + face_extra + "end_header\n";
+}
+
 std::string error_of(const std::string& p) {
   try {
     read_mesh(p);
@@ -94,9 +101,7 @@ TEST_F(MeshIo, tombstones_are_skipped_when_writing) {
 
 TEST_F(MeshIo, triangle_inputs_in_every_format) {
   const std::string ply_ascii = write("a.ply",
-      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
-      "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+      ply_header(4, 2) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
   const std::string obj = write("a.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
   const std::string off = write("a.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
   const std::string stl = write("a.stl",
@@ -124,9 +129,7 @@ TEST_F(MeshIo, quads_from_polygons_and_from_faux_flags) {
   // faux flag (0x00040000 << edge) in a per-face "flags" property.
   const std::string obj = write("q.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   const std::string ply = write("q.ply",
-      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 2\nproperty list uchar int vertex_indices\nproperty int flags\nend_header\n"
-      "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 1048576\n3 0 2 3 262144\n");
+      ply_header(4, 2, "property int flags\n") + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 1048576\n3 0 2 3 262144\n");
   for (const auto& p : {obj, ply}) {
     SCOPED_TRACE(p);
     const MeshFile f = read_mesh(p);
@@ -136,12 +139,11 @@ TEST_F(MeshIo, quads_from_polygons_and_from_faux_flags) {
 }
 
 TEST_F(MeshIo, polygons_of_five_corners_in_every_format) {
-  // Two convex pentagons of area 1.5 each, apart. vcglib's OFF reader put the triangles of
-  // such a face on the file's first five vertices (the second pentagon was lost).
+  // Two convex pentagons of area 1.5 each, apart. vcglib's OFF reader (replaced by
+  // read_off.cpp) put the triangles of such a face on the file's first five vertices.
   const std::string v = "0 0 0\n1 0 0\n1 1 0\n0.5 2 0\n0 1 0\n5 0 1\n6 0 1\n6 1 1\n5.5 2 1\n5 1 1\n";
   const std::string ply = write("p.ply",
-      "ply\nformat ascii 1.0\nelement vertex 10\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 2\nproperty list uchar int vertex_indices\nend_header\n" + v + "5 0 1 2 3 4\n5 5 6 7 8 9\n");
+      ply_header(10, 2) + v + "5 0 1 2 3 4\n5 5 6 7 8 9\n");
   // The second face's count stands alone, its corners on the next line, as vcglib allows.
   const std::string off = write("p.off", "OFF\n10 2 0\n" + v + "5 0 1 2 3 4\n5\n5 6 7 8 9\n");
   std::string obj_text;
@@ -168,8 +170,7 @@ TEST_F(MeshIo, quads_that_share_a_diagonal_are_read_back_as_quads) {
   // importers split both along 0-2, so that directed edge belongs to two triangles.
   const std::string v = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n1.5 -0.5 1\n-0.5 1.5 1\n";
   const std::string ply = write("d.ply",
-      "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 2\nproperty list uchar int vertex_indices\nend_header\n" + v + "4 0 1 2 3\n4 2 4 0 5\n");
+      ply_header(6, 2) + v + "4 0 1 2 3\n4 2 4 0 5\n");
   const std::string off = write("d.off", "OFF\n6 2 0\n" + v + "4 0 1 2 3\n4 2 4 0 5\n");
   const std::string obj = write("d.obj",
       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1.5 -0.5 1\nv -0.5 1.5 1\nf 1 2 3 4\nf 3 5 1 6\n");
@@ -258,21 +259,15 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
   EXPECT_NE(error_of(path("cut.ply")).find("unreadable PLY"), std::string::npos);
 
   // Out-of-range index.
-  const std::string bad_index = write("idx.ply",
-      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+  const std::string bad_index = write("idx.ply", ply_header(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
   EXPECT_FALSE(error_of(bad_index).empty());
   // ... in a quad, which vcglib splits without checking (it crashed).
-  const std::string bad_quad = write("idxq.ply",
-      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 7\n");
+  const std::string bad_quad = write("idxq.ply", ply_header(4, 1) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 7\n");
   EXPECT_NE(error_of(bad_quad).find("unreadable PLY (Bad vertex index in face)"), std::string::npos);
 
   // Corners naming no vertex: vcglib's readers look them up unchecked (all crashed).
   const std::string square = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
-  const std::string ply_head =
-      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string ply_head = ply_header(4, 1);
   const std::string obj_square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
   const std::pair<std::string, std::string> cases[] = {
       {write("far.ply", ply_head + square + "4 0 1 2 100000000\n"), "unreadable PLY (Bad vertex index in face)"},
