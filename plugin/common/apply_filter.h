@@ -29,6 +29,14 @@ void mark_polygonal(Model* m) {
   vcg::tri::UpdateNormal<std::remove_reference_t<decltype(m->cm)>>::PerBitQuadFaceNormalized(m->cm);
 }
 
+//! The layer's label, or "layer ID" for a layer without one (pymeshlab.Mesh arrays),
+//! whose messages began with a bare ": ".
+template <class Model>
+std::string layer_name(const Model& m) {
+  const std::string label = m.label().toStdString();
+  return label.empty() ? "layer " + std::to_string(m.id()) : label;
+}
+
 //! Runs filter `id` on the current layer of `md`. `update_box(model*)` recomputes a
 //! layer's bounding box and normals; `reference_layer()` returns the layer chosen as
 //! ReferenceMesh (nullptr if none). \throw InvalidInput, std::invalid_argument.
@@ -38,14 +46,14 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
   auto* m = md.mm();
   using Model = std::remove_pointer_t<decltype(m)>;
   if (!m) throw InvalidInput("there is no current mesh");
-  const std::string name = m->label().toStdString();
+  const std::string name = layer_name(*m);
   require_faces(m->cm, name);
   Outcome out;
   switch (id) {
     case kSimplify: {
       const QuadMesh q =
           run_simplification(mesh_file_of(m->cm), name, simplify_params_of(params), progress_of(cb), out);
-      auto* result = md.addNewMesh("", m->label() + " quads", true);
+      auto* result = md.addNewMesh("", QString::fromStdString(name + " quads"), true);
       assign_quads(result->cm, q);
       update_box(result);
       mark_polygonal(result);
@@ -68,7 +76,7 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
     case kQuality: {
       const auto* ref = reference_layer();
       if (!ref) throw InvalidInput("choose a reference mesh");
-      run_quality(mesh_file_of(m->cm), name, mesh_file_of(ref->cm), ref->label().toStdString(),
+      run_quality(mesh_file_of(m->cm), name, mesh_file_of(ref->cm), layer_name(*ref),
                   unsigned(std::max(1000, params.getInt("SampleNum"))), out);
       break;
     }

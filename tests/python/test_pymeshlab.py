@@ -248,6 +248,16 @@ def test_bad_input_raises_a_python_exception():
     assert "halting share" in str(e.value)
 
 
+def test_a_layer_without_a_label_is_named_by_its_id():
+    # Three triangles on one edge, from arrays: pymeshlab gives the layer no label.
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]], dtype=float)
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, face_matrix=np.array([[0, 1, 2], [1, 0, 3], [0, 1, 4]])))
+    with pytest.raises(pymeshlab.PyMeshLabException) as e:
+        ms.meshing_quad_mesh_simplification(targetfacenum=1)
+    assert "layer 0: edge 0-1 is shared by more than two triangles" in str(e.value)
+
+
 def plugin_and_cli(bunny_path, cli, tmp_path, filter_args, cli_args):
     """Quality of the filter's result and stats of the CLI's result, same input and settings."""
     ms = pymeshlab.MeshSet()
