@@ -248,14 +248,20 @@ def test_bad_input_raises_a_python_exception():
     assert "halting share" in str(e.value)
 
 
-def test_a_layer_without_a_label_is_named_by_its_id():
-    # Three triangles on one edge, from arrays: pymeshlab gives the layer no label.
+def test_a_non_manifold_edge_is_refused_with_the_repair_to_run():
+    # Three triangles on one edge, from arrays: pymeshlab gives the layer no label, so the
+    # message names it by its id.
     v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]], dtype=float)
     ms = pymeshlab.MeshSet()
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, face_matrix=np.array([[0, 1, 2], [1, 0, 3], [0, 1, 4]])))
     with pytest.raises(pymeshlab.PyMeshLabException) as e:
         ms.meshing_quad_mesh_simplification(targetfacenum=1)
     assert "layer 0: edge 0-1 is shared by more than two triangles" in str(e.value)
+    # The filter the message names is the one that mends it.
+    assert "Repair non Manifold Edges" in str(e.value)
+    ms.meshing_repair_non_manifold_edges()
+    ms.meshing_quad_mesh_simplification(targetfacenum=1)
+    assert is_pure_quad(ms.current_mesh())
 
 
 def plugin_and_cli(bunny_path, cli, tmp_path, filter_args, cli_args):

@@ -436,7 +436,8 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
     }
     if (bad[0] != kNone)
       throw InvalidInput(src + ": edge " + std::to_string(bad[0]) + "-" + std::to_string(bad[1]) +
-                         " is shared by more than two triangles (non-manifold edge)");
+                         " is shared by more than two triangles (non-manifold edge; MeshLab's Cleaning and "
+                         "Repairing > Repair non Manifold Edges removes the extra faces)");
     orient(m, adj, r, src);
   }
   split_nonmanifold_vertices(m, r);
