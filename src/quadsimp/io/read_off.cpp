@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string_view>
 #include <vector>
 
@@ -77,14 +78,15 @@ MeshFile read_off(const std::string& path) {
   long long nv = -1, nf = -1;
   if (counts.size() < 2 || !detail::parse_number(counts[0], nv) || !detail::parse_number(counts[1], nf) || nv < 0 || nf < 0)
     in.fail("no vertex and face counts (two whole numbers) after the OFF header");
+  if (nv > std::numeric_limits<Index>::max()) in.fail(std::to_string(nv) + " vertices are more than quadsimp indexes");
 
   // A count beyond what the file could hold is not reserved for: the lines run out first.
   std::error_code ec;
   const auto bytes = static_cast<long long>(std::filesystem::file_size(path, ec));
-  MeshFile mesh;
+  std::vector<Vec3> positions;
   std::vector<std::array<Index, 3>> triangles;
   std::vector<std::uint8_t> faux;
-  mesh.positions.reserve(std::size_t(std::min(nv, bytes / 6)));
+  positions.reserve(std::size_t(std::min(nv, bytes / 6)));
   triangles.reserve(std::size_t(std::min(nf, bytes / 8)));
   faux.reserve(triangles.capacity());
 
@@ -94,7 +96,7 @@ MeshFile read_off(const std::string& path) {
     Vec3 p;
     for (int k = 0; k < 3; ++k)
       if (!detail::parse_number(in[k], p[k])) in.fail("'" + std::string(in[k]) + "' is not a number (a vertex coordinate)");
-    mesh.positions.push_back(p);
+    positions.push_back(p);
   }
 
   std::vector<Index> corners;
@@ -127,7 +129,7 @@ MeshFile read_off(const std::string& path) {
       faux.push_back(std::uint8_t((i > 1 ? 1u : 0u) | (i + 2 < corners.size() ? 4u : 0u)));
     }
   }
-  return pair_faux_triangles(std::move(mesh.positions), std::move(triangles), faux);
+  return pair_faux_triangles(std::move(positions), std::move(triangles), faux);
 }
 
 }  // namespace qs
