@@ -284,6 +284,8 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
       {write("ahead.obj", "v 0 0 0\nf 1 2 3\nv 1 0 0\nv 0 1 0\n"), "line 2: face corner 2 names no vertex"},
       {write("neg.obj", obj_square + "f -1 -2 -5\n"), "line 5: face corner -5 names no vertex (only 4 come before it)"},
       {write("zero.obj", obj_square + "f 0 1 2\n"), "line 5: face corner 0 names no vertex"},
+      {write("back.qobj.obj", obj_square + "q -1 -2 -3 -4\n"), "line 5: face corner -1 names no vertex"},
+      {write("far.qobj.obj", obj_square + "q 0 1 2 4\n"), "line 5: face corner 4 names no vertex"},
       {write("word.obj", obj_square + "f 1/1 2// x3\n"), "line 5: 'x3' is not a vertex number"},
       // OFF headers and counts that cannot be read as stated.
       {write("minus.off", "OFF\n4 -1 0\n" + square), "line 2: no vertex and face counts"},
@@ -347,7 +349,7 @@ TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
   const std::pair<std::string, std::string> seeds[] = {
       {"s.ply", ply_header(7, 4, "property int flags\n") + corners + "4 0 1 2 3 0\n3 1 5 6 0\n3 1 6 2 0\n5 0 1 2 4 3 0\n"},
       {"s.off", "OFF\n7 4 0\n" + corners + "4 0 1 2 3\n5 0 1 2 4 3\n3 1 5 6\n3 1 6 2 255 0 0\n"},
-      {"s.obj", obj + "vn 0 0 1\nf 1//1 2//1 3//1 4//1\nf 2 6 7\nf -5 -1 -4\nf 4 3 5\n"},
+      {"s.obj", obj + "vn 0 0 1\nf 1//1 2//1 3//1 4//1\nf 2 6 7\nf -5 -1 -4\nq 3 2 4 6\n"},
       {"s.stl", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\n"
                 "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid a\n"},
       {"b.ply", binary_ply},

@@ -105,12 +105,13 @@ class ObjCheck {
       if (!detail::parse_number(tokens_[i], x)) fail_line("'" + std::string(tokens_[i]) + "' is not a number (a vertex coordinate)");
   }
 
+  // OBJ corners count from 1, or back from -1; QOBJ's count from 0, with no backward form.
   void check_corner(std::size_t i, bool zero_based) const {
     long long c;
     if (!detail::parse_number(tokens_[i].substr(0, tokens_[i].find('/')), c))
       fail_line("'" + std::string(tokens_[i]) + "' is not a vertex number (a face corner)");
-    if (zero_based && c >= 0) ++c;
-    if (c == 0 || (c < 0 ? -c : c) > n_vertices_)
+    const bool named = zero_based ? c >= 0 && c < n_vertices_ : c != 0 && (c < 0 ? -c : c) <= n_vertices_;
+    if (!named)
       fail_line("face corner " + std::to_string(c) + " names no vertex (only " + std::to_string(n_vertices_) +
                 " come before it)");
   }
