@@ -3,8 +3,8 @@
 // The only file that sees vcglib's I/O. vcglib triangulates polygons on import and
 // marks the inner edges "faux"; MeshLab stores its quads the same way (and writes the
 // flags to PLY with -m ff). So one path serves every format: read triangles with
-// face flags, then regroup triangles joined by a faux edge into polygons. OFF is read
-// by read_off.cpp (why is said there) into the same form.
+// face flags, then regroup triangles joined by a faux edge into polygons. OBJ and OFF
+// are read by read_obj.cpp and read_off.cpp (why is said there) into the same form.
 #include "quadsimp/io/mesh_io.h"
 
 #include <algorithm>
@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <string_view>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -22,12 +21,10 @@
 #include <wrap/io_trimesh/export_obj.h>
 #include <wrap/io_trimesh/export_off.h>
 #include <wrap/io_trimesh/export_ply.h>
-#include <wrap/io_trimesh/import_obj.h>
 #include <wrap/io_trimesh/import_ply.h>
 #include <wrap/io_trimesh/import_stl.h>
 
-#include "quadsimp/io/read_off.h"
-#include "quadsimp/io/text_fields.h"
+#include "quadsimp/io/text_readers.h"
 #include "quadsimp/util/errors.h"
 
 namespace qs {
@@ -59,69 +56,6 @@ class PMesh : public vcg::tri::TriMesh<std::vector<PVertex>, std::vector<PFace>>
   throw InvalidInput(path + ": " + why);
 }
 
-// vcglib's OBJ reader trusts what it reads: a coordinate that is not a number becomes 0
-// (atof), so a damaged file loaded with vertices piled at the origin, and a face corner
-// naming no vertex was followed into memory the mesh does not own (a crash), or its
-// triangle dropped without a word. So the lines are checked first: the first three
-// fields of each vertex must be numbers, and every face corner a vertex above its line
-// (counted from 1, or back from -1).
-class ObjCheck {
- public:
-  explicit ObjCheck(std::string path) : path_(std::move(path)) {}
-
-  void run() {
-    std::ifstream in(path_);
-    std::string line;
-    while (next_line(in, line)) {
-      const std::string_view kw = tokens_[0];
-      if (kw == "v") {
-        check_coordinates();
-        ++n_vertices_;
-      } else if (kw == "f" || kw == "q") {  // "q": a quad of the zero-based QOBJ variant
-        for (std::size_t i = 1; i < tokens_.size(); ++i) check_corner(i, kw == "q");
-      }
-    }
-  }
-
- private:
-  // Not '#' within a line: vcglib reads "f 1 2 3 # note" as five corners.
-  bool next_line(std::ifstream& in, std::string& line) {
-    while (std::getline(in, line)) {
-      ++lineno_;
-      detail::split_fields(line, tokens_);
-      if (!tokens_.empty() && tokens_[0][0] != '#') return true;
-    }
-    return false;
-  }
-
-  [[noreturn]] void fail_line(const std::string& why) const {
-    fail(path_, "line " + std::to_string(lineno_) + ": " + why);
-  }
-
-  // A missing coordinate is left to vcglib's own check.
-  void check_coordinates() const {
-    double x;
-    for (std::size_t i = 1; i < std::min<std::size_t>(4, tokens_.size()); ++i)
-      if (!detail::parse_number(tokens_[i], x)) fail_line("'" + std::string(tokens_[i]) + "' is not a number (a vertex coordinate)");
-  }
-
-  // OBJ corners count from 1, or back from -1; QOBJ's count from 0, with no backward form.
-  void check_corner(std::size_t i, bool zero_based) const {
-    long long c;
-    if (!detail::parse_number(tokens_[i].substr(0, tokens_[i].find('/')), c))
-      fail_line("'" + std::string(tokens_[i]) + "' is not a vertex number (a face corner)");
-    const bool named = zero_based ? c >= 0 && c < n_vertices_ : c != 0 && (c < 0 ? -c : c) <= n_vertices_;
-    if (!named)
-      fail_line("face corner " + std::to_string(c) + " names no vertex (only " + std::to_string(n_vertices_) +
-                " come before it)");
-  }
-
-  std::string path_;
-  long lineno_ = 0;
-  std::vector<std::string_view> tokens_;
-  long long n_vertices_ = 0;
-};
-
 void check_readable(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
@@ -152,12 +86,6 @@ void load_vcg(const std::string& path, TMesh& m) {
     int mask = 0;
     const int err = vcg::tri::io::ImporterPLY<TMesh>::Open(m, path.c_str(), mask);
     if (err != 0) fail(path, std::string("unreadable PLY (") + vcg::tri::io::ImporterPLY<TMesh>::ErrorMsg(err) + ")");
-  } else if (ext == "obj") {
-    ObjCheck(path).run();
-    vcg::tri::io::ImporterOBJ<TMesh>::Info info;
-    const int err = vcg::tri::io::ImporterOBJ<TMesh>::Open(m, path.c_str(), info);
-    if (err != 0 && vcg::tri::io::ImporterOBJ<TMesh>::ErrorCritical(err))
-      fail(path, std::string("unreadable OBJ (") + vcg::tri::io::ImporterOBJ<TMesh>::ErrorMsg(err) + ")");
   } else if (ext == "stl") {
     int mask = 0;
     const int err = vcg::tri::io::ImporterSTL<TMesh>::Open(m, path.c_str(), mask);
@@ -252,8 +180,11 @@ std::string extension_of(const std::string& path) {
 MeshFile read_mesh(const std::string& path) {
   check_readable(path);
   MeshFile file;
-  if (extension_of(path) == "off") {
+  const std::string ext = extension_of(path);
+  if (ext == "off") {
     file = read_off(path);
+  } else if (ext == "obj") {
+    file = read_obj(path);
   } else {
     TMesh m;
     load_vcg(path, m);

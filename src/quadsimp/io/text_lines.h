@@ -1,0 +1,81 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Lines of a text mesh file (OBJ, OFF) split into fields, '#' comments and blank lines
+// skipped, numbered for messages; numbers read from whole fields ("0.5x" is not a
+// number, where atof takes it for 0.5).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include "quadsimp/util/errors.h"
+#include "quadsimp/util/types.h"
+
+namespace qs::detail {
+
+template <class T>
+bool parse_number(std::string_view field, T& x) {
+  if (!field.empty() && field[0] == '+') field.remove_prefix(1);  // from_chars takes no '+', strtod does
+  const auto r = std::from_chars(field.data(), field.data() + field.size(), x);
+  return r.ec == std::errc() && r.ptr == field.data() + field.size();
+}
+
+class TextLines {
+ public:
+  explicit TextLines(const std::string& path) : path_(path), in_(path) {
+    if (!in_) throw InvalidInput(path_ + ": cannot be opened for reading");
+  }
+
+  //! Moves to the next line with a field; false at the end of the file.
+  bool next() {
+    while (std::getline(in_, line_)) {
+      ++number_;
+      fields_.clear();
+      const std::string_view l = std::string_view(line_).substr(0, line_.find('#'));
+      for (std::size_t b = l.find_first_not_of(" \t\r"); b != std::string_view::npos;) {
+        const std::size_t e = std::min(l.find_first_of(" \t\r", b), l.size());
+        fields_.push_back(l.substr(b, e - b));
+        b = l.find_first_not_of(" \t\r", e);
+      }
+      if (!fields_.empty()) return true;
+    }
+    return false;
+  }
+
+  const std::vector<std::string_view>& fields() const { return fields_; }
+  std::string_view operator[](std::size_t i) const { return fields_[i]; }
+  std::size_t size() const { return fields_.size(); }
+
+  [[noreturn]] void fail(const std::string& why) const {
+    throw InvalidInput(path_ + ": line " + std::to_string(number_) + ": " + why);
+  }
+  [[noreturn]] void ends(const std::string& before) const {
+    throw InvalidInput(path_ + ": the file ends " + before);
+  }
+
+ private:
+  std::string path_;
+  std::ifstream in_;
+  std::string line_;
+  long number_ = 0;
+  std::vector<std::string_view> fields_;
+};
+
+//! Appends polygon `corners` fanned from its first corner, with bit k of each flag
+//! marking edge k (corner k to k+1) as inside the polygon, as vcglib's readers mark them.
+inline void fan(const std::vector<Index>& corners, std::vector<std::array<Index, 3>>& triangles,
+                std::vector<std::uint8_t>& faux) {
+  for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
+    triangles.push_back({corners[0], corners[i], corners[i + 1]});
+    faux.push_back(std::uint8_t((i > 1 ? 1u : 0u) | (i + 2 < corners.size() ? 4u : 0u)));
+  }
+}
+
+}  // namespace qs::detail

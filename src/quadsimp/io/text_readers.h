@@ -1,0 +1,22 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <string>
+
+#include "quadsimp/mesh/mesh_file.h"
+
+namespace qs {
+
+// Quads come back as quads; larger polygons are fanned into triangles from their first
+// corner, as vcglib's PLY reader does. \throw InvalidInput "PATH: line N: reason" for
+// anything they cannot read as stated.
+
+//! ASCII OFF ("[ST][C][N]OFF", one vertex and one face per line, colours and normals
+//! ignored).
+MeshFile read_off(const std::string& path);
+
+//! OBJ: "v" and "f" lines (corners from 1, or back from -1; "q": QOBJ's zero-based
+//! quads); normals, texture coordinates, groups and materials ignored.
+MeshFile read_obj(const std::string& path);
+
+}  // namespace qs
