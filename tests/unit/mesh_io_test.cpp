@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -81,6 +82,24 @@ TEST_F(MeshIo, quad_round_trip_every_output_format) {
     write_quad_mesh(p, m);
     SCOPED_TRACE(ext);
     expect_same_quads(m, read_mesh(p));
+  }
+}
+
+TEST_F(MeshIo, obj_keeps_every_bit_of_tiny_and_far_coordinates) {
+  // vcglib's OBJ writer printed 16 fixed decimals: in units of 1e-9, 7 digits were left.
+  for (const double scale : {1e-12, 1.0, 1e8}) {
+    SCOPED_TRACE(scale);
+    QuadMesh m = grid_with_hole(4);
+    for (auto& p : const_cast<std::vector<Vec3>&>(m.positions())) p = scale * (p + Vec3(std::sqrt(2.0), 0.1, p.x() / 3));
+    const std::string file = path("tiny.obj");
+    write_quad_mesh(file, m);
+    const MeshFile b = read_mesh(file);
+    ASSERT_EQ(b.positions.size(), m.n_vertices());
+    for (Index v = 0; v < m.n_vertices(); ++v) EXPECT_EQ(b.positions[v], m.position(v));
+    std::ifstream in(file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.rfind("# quadsimp", 0), 0u);
+    EXPECT_EQ(text.find(".part"), std::string::npos);  // the temporary file's name
   }
 }
 
