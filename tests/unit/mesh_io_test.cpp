@@ -332,14 +332,15 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
 }
 
 TEST_F(MeshIo, text_files_with_comments_colours_and_signs_are_read) {
-  // What the readers must let through: comments (also after a face), blank lines, normals,
-  // texture coordinates, objects, groups, materials and lines, '+' signs, exponents, COFF
-  // colours, counts on the OFF line.
+  // What the readers must let through: a byte order mark, CRLF line ends, comments (also
+  // after a face), blank lines, normals, texture coordinates, objects, groups, materials
+  // and lines, '+' signs, exponents, COFF colours, counts on the OFF line.
   const std::string obj = write("ok.obj", "# square\nv +0 0 0\nvn 0 0 1\nvt 0 0\nv 1e0 0 0\n\nv 1 1 0 1\nv 0 1.0 0\n"
                                           "o part\ng half\nusemtl red\nf 1 2 3 # first half\nf 1 3 4\nl 1 3\n");
+  const std::string bom = write("bom.obj", "\xEF\xBB\xBFv 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nv 0 1 0\r\nf 1 2 3\r\nf 1 3 4\r\n");
   const std::string off = write("ok.off", "COFF 4 2 0\n# corners\n0 0 0 255 0 0 255\n1 0 0 255 0 0 255\n"
                                           "1 1 0 255 0 0 255\n0 1 0 255 0 0 255\n3 0 1 2\n3 0 2 3\n");
-  for (const std::string& p : {obj, off}) {
+  for (const std::string& p : {obj, bom, off}) {
     const MeshFile f = read_mesh(p);
     EXPECT_EQ(f.positions.size(), 4u) << p;
     EXPECT_EQ(f.positions[2], Vec3(1, 1, 0)) << p;

@@ -8,6 +8,7 @@
 #include "quadsimp/io/mesh_io.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstdint>
 #include <cstdio>

@@ -36,7 +36,7 @@ class TextLines {
   //! Moves to the next line with a field; false at the end of the file.
   bool next() {
     while (std::getline(in_, line_)) {
-      ++number_;
+      if (++number_ == 1 && line_.rfind("\xEF\xBB\xBF", 0) == 0) line_.erase(0, 3);  // a UTF-8 byte order mark
       fields_.clear();
       const std::string_view l = std::string_view(line_).substr(0, line_.find('#'));
       for (std::size_t b = l.find_first_not_of(" \t\r"); b != std::string_view::npos;) {
