@@ -1,9 +1,45 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include <CLI/CLI.hpp>
+#include <charconv>
+#include <cmath>
 #include <exception>
 #include <iostream>
+#include <limits>
+#include <string>
+#include <system_error>
 
 #include "cli/commands.h"
+
+namespace {
+
+// CLI11's PositiveNumber answers 0 with "Value 0 not in range 0.000000 to" and the
+// largest double in 309 digits; these say what is wanted.
+CLI::Validator whole_number_from_one() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        unsigned long long x = 0;
+        const auto r = std::from_chars(s.data(), s.data() + s.size(), x);
+        const unsigned long long most = std::numeric_limits<unsigned>::max();
+        if (r.ec != std::errc() || r.ptr != s.data() + s.size() || x < 1 || x > most)
+          return "'" + s + "' is not a whole number from 1 to " + std::to_string(most);
+        return {};
+      },
+      "N>=1");
+}
+
+CLI::Validator number_above_zero() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        double x = 0;
+        const auto r = std::from_chars(s.data(), s.data() + s.size(), x);
+        if (r.ec != std::errc() || r.ptr != s.data() + s.size() || !(x > 0) || !std::isfinite(x))
+          return "'" + s + "' is not a number above 0";
+        return {};
+      },
+      "X>0");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace qs::cli;
@@ -21,12 +57,12 @@ int main(int argc, char** argv) {
   auto* s = app.add_subcommand("simplify", "Simplify a triangle or quad mesh into a coarser pure quad mesh");
   s->add_option("IN", simp.input, "input mesh (PLY, OBJ, OFF, STL; triangles or quads)")->required()->check(CLI::ExistingFile);
   s->add_option("OUT", simp.output, "output quad mesh (.ply, .obj or .off)")->required();
-  s->add_option("-f,--faces", simp.faces, "target number of quads")->check(CLI::PositiveNumber);
+  s->add_option("-f,--faces", simp.faces, "target number of quads")->check(whole_number_from_one());
   s->add_flag("--adaptive", simp.adaptive, "adaptive mode driven by fitmaps");
   s->add_flag("--auto-halt", simp.auto_halt,
               "adaptive: stop once the faces whose collapses the M-fitmap refuses cover --halt-share of the surface");
   s->add_option("--tau", simp.tau, "adaptive: M-fitmap tolerance (share of inconsistent area)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
-  s->add_option("--m-factor", simp.m_factor, "adaptive: a face radius must stay below F_M / this")->capture_default_str()->check(CLI::PositiveNumber);
+  s->add_option("--m-factor", simp.m_factor, "adaptive: a face radius must stay below F_M / this")->capture_default_str()->check(number_above_zero());
   s->add_option("--halt-share", simp.halt_share,
                 "auto-halt: share of the surface the M-fitmap may block before stopping (1: until no feasible collapse remains, the paper's rule)")
       ->capture_default_str()
@@ -37,7 +73,9 @@ int main(int argc, char** argv) {
               "afterwards, move the vertices along their normals, off the input, to lower the distance both ways (ours)");
   s->add_flag("--stats", simp.stats, "print quality and distance metrics of the result");
   s->add_flag("--json", simp.json, "print the result's metrics (and the time) as one JSON object");
-  s->add_option("--samples", simp.samples, "distance samples per surface for --stats")->capture_default_str();
+  s->add_option("--samples", simp.samples, "distance samples per surface for --stats")
+      ->capture_default_str()
+      ->check(whole_number_from_one());
   s->add_flag("-q,--quiet", simp.quiet, "no progress bar and no notes");
 
   FitmapArgs fit;
@@ -52,7 +90,7 @@ int main(int argc, char** argv) {
   st->add_option("REF", stats.reference, "reference (input) mesh")->required()->check(CLI::ExistingFile);
   st->add_option("QUAD", stats.quads, "quad mesh to measure")->required()->check(CLI::ExistingFile);
   st->add_flag("--json", stats.json, "one JSON object on stdout");
-  st->add_option("--samples", stats.samples, "distance samples per surface")->capture_default_str();
+  st->add_option("--samples", stats.samples, "distance samples per surface")->capture_default_str()->check(whole_number_from_one());
 
   try {
     app.parse(argc, argv);

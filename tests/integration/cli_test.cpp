@@ -6,6 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "fixtures/shapes.h"
 #include "quadsimp/io/mesh_io.h"
@@ -80,6 +83,18 @@ TEST_F(Cli, bad_arguments_exit_2) {
   EXPECT_EQ(run("convert " + p("nope.ply") + " " + p("o.ply")).code, 2);
   EXPECT_EQ(run("convert " + input_ + " " + p("o.stl")).code, 2);
   EXPECT_EQ(run("frobnicate").code, 2);
+  // Numbers out of range say what is wanted (CLI11's own check printed the largest
+  // double in 309 digits).
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"simplify " + input_ + " " + p("o.ply") + " --faces 0", "--faces: '0' is not a whole number from 1"},
+           {"simplify " + input_ + " " + p("o.ply") + " --faces 2.5", "--faces: '2.5' is not a whole number from 1"},
+           {"simplify " + input_ + " " + p("o.ply") + " --faces 10 --m-factor 0", "--m-factor: '0' is not a number above 0"},
+           {"stats " + input_ + " " + input_ + " --samples 0", "--samples: '0' is not a whole number from 1"}}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+    EXPECT_LT(r.out.size(), 200u) << r.out;
+  }
   // Never over the input, and the input is untouched.
   const auto before = fs::file_size(input_);
   const CliRun r = run("convert " + input_ + " " + input_);
@@ -121,6 +136,10 @@ TEST_F(Cli, a_target_the_mesh_cannot_reach_is_reported) {
   EXPECT_EQ(r.out.find("above the target"), std::string::npos) << r.out;
   r = run("simplify " + input_ + " " + p("s.ply") + " --faces 60");
   EXPECT_EQ(r.out.find("above the target"), std::string::npos) << r.out;
+  // A target above what the input converts to leaves nothing to do, and says so.
+  r = run("simplify " + grid + " " + p("g.ply") + " --faces 100000");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("note: the target of 100000 quads is above the "), std::string::npos) << r.out;
 }
 
 TEST_F(Cli, a_strip_one_quad_wide_reaches_its_target_by_chord_collapses) {

@@ -51,8 +51,11 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
 }
 
 std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
-  if (target_faces == 0 || r.faces <= target_faces || r.cancelled) return {};
   const auto n = [](Index x) { return std::to_string(x); };
+  if (target_faces > r.initial_faces)
+    return "the target of " + n(target_faces) + " quads is above the " + n(r.initial_faces) +
+           " the input converts to: nothing was simplified (the result is the conversion)";
+  if (target_faces == 0 || r.faces <= target_faces || r.cancelled) return {};
   return "stopped at " + n(r.faces) + " quads, above the target of " + n(target_faces) +
          ": every remaining collapse was refused (refusals over the run: " + n(r.refused_topology) +
          " topology, e.g. holes and kept borders; " + n(r.refused_valence) + " valence cap; " +

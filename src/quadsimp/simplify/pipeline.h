@@ -34,8 +34,9 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
 
 //! "" when the run reached its face target (or had none, or was cancelled); otherwise one
 //! sentence for the log saying where it stopped and what refused the remaining
-//! collapses. Holes, a kept border and the valence cap can leave a mesh above any
-//! target, and a user asking for 50 quads must not take 568 for a bug.
+//! collapses, or that the target is above the quads the input converts to. Holes, a
+//! kept border and the valence cap can leave a mesh above any target, and a user asking
+//! for 50 quads must not take 568 for a bug.
 std::string target_shortfall(const SimplifyReport& report, Index target_faces);
 
 //! The operations a run did, for a summary line: "N collapses, M rotations", with the
