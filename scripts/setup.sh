@@ -95,9 +95,10 @@ rm -rf "$deps/download"
 # Fixes of ours to vcglib's readers (each patch says what it mends), applied once.
 for p in "$here"/scripts/patches/*.patch; do
   [ -f "$p" ] || continue
-  if ! patch -d "$deps/meshlab-2025.07" -p1 -R -s -f --dry-run < "$p" >/dev/null 2>&1; then
-    patch -d "$deps/meshlab-2025.07" -p1 -N -s < "$p" >/dev/null || die "could not apply $p to $deps/meshlab-2025.07."
-    echo "setup: applied $(basename "$p")"
-  fi
+  patch -d "$deps/meshlab-2025.07" -p1 -R -s -f --dry-run < "$p" >/dev/null 2>&1 && continue  # applied already
+  patch -d "$deps/meshlab-2025.07" -p1 -s -f --dry-run < "$p" >/dev/null 2>&1 \
+    || die "$p applies neither way to $deps/meshlab-2025.07 (partly applied?): remove that folder and run setup again."
+  patch -d "$deps/meshlab-2025.07" -p1 -s < "$p" >/dev/null || die "could not apply $p to $deps/meshlab-2025.07."
+  echo "setup: applied $(basename "$p")"
 done
 echo "setup: done"
