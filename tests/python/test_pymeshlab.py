@@ -77,6 +77,11 @@ def test_a_target_the_mesh_cannot_reach_is_logged(capfd):
     ms.meshing_quad_mesh_simplification(targetfacenum=60)
     assert len(ms.current_mesh().polygonal_face_list()) == 60
     assert "above the target" not in capfd.readouterr().err
+    # A target above what the grid converts to: the conversion comes back, and the log says why.
+    ms.set_current_mesh(0)
+    ms.meshing_quad_mesh_simplification(targetfacenum=100000)
+    assert is_pure_quad(ms.current_mesh())
+    assert "the target of 100000 quads is above the " in capfd.readouterr().err
 
 
 def test_a_strip_one_quad_wide_reaches_its_target_by_chord_collapses(capfd):
