@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -316,9 +319,9 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
       {write("alone.off", "OFF\n4 1 0\n" + square + "3\n"), "the file ends before the corners of its last face"},
       {write("flat.off", "OFF\n4 1 0\n0 0\n"), "line 3: a vertex needs three coordinates"},
       {write("huge.ply", "ply\nformat ascii 1.0\nelement vertex 300000000\nproperty float x\nend_header\n0\n"),
-       "unreadable PLY (its header counts 300000000 'vertex' elements in a file of"},
+       "unreadable PLY (its header counts 300000000 'vertex' elements in 2 bytes of data)"},
       {write("nocount.ply", "ply\nformat ascii 1.0\nelement vertex\nproperty float x\nend_header\n0\n"),
-       "unreadable PLY (Syntax error on header)"},
+       "unreadable PLY (element 'vertex' has no count)"},
   };
   for (const auto& [file, message] : cases) EXPECT_NE(error_of(file).find(message), std::string::npos) << error_of(file);
   // What the corner check must let through: negative OBJ corners, which count back from
@@ -415,6 +418,7 @@ TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
         const std::string what = e.what();
         EXPECT_EQ(what.rfind(file + ": ", 0), 0u) << what;
         EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+        EXPECT_TRUE(std::all_of(what.begin(), what.end(), [](char c) { return c >= 0x20 && c < 0x7f; })) << what;
       } catch (const std::exception& e) {
         ADD_FAILURE() << file << ": " << e.what() << "\n" << text;
       }
@@ -423,6 +427,42 @@ TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
   // Both outcomes occur, so the damage is neither all fatal nor all harmless.
   EXPECT_GT(loaded, 100);
   EXPECT_GT(refused, 100);
+}
+
+TEST_F(MeshIo, ply_variants_are_read) {
+  // Big-endian, doubles and floats mixed, a colour between the coordinates' neighbours, a
+  // ushort count with uint corners (vcglib misread that list), and faces before vertices.
+  std::string big = "ply\nformat binary_big_endian 1.0\nelement face 2\nproperty list ushort uint vertex_indices\n"
+                    "element vertex 5\nproperty double x\nproperty float y\nproperty uchar red\nproperty double z\n"
+                    "end_header\n";
+  const auto put = [&big](const auto value) {
+    const auto* b = reinterpret_cast<const char*>(&value);
+    for (std::size_t k = sizeof value; k-- > 0;) big += b[k];  // this host is little-endian
+  };
+  for (const std::array<std::uint32_t, 4>& q : {std::array<std::uint32_t, 4>{0, 1, 2, 3}, {3, 2, 4, 0}}) {
+    put(std::uint16_t(q[3] == 0 ? 3 : 4));
+    for (std::size_t k = 0; k < (q[3] == 0 ? 3u : 4u); ++k) put(q[k]);
+  }
+  const double xs[] = {0, 1, 1, 0, 0.5}, ys[] = {0, 0, 1, 1, 2};
+  for (int v = 0; v < 5; ++v) {
+    put(xs[v]);
+    put(float(ys[v]));
+    big += char(7);
+    put(0.25 * v);
+  }
+  const MeshFile b = read_mesh(write("big.ply", big));
+  ASSERT_EQ(b.positions.size(), 5u);
+  EXPECT_EQ(b.positions[4], Vec3(0.5, 2, 1.0));
+  EXPECT_EQ(b.triangles.size(), 3u);
+
+  // A polygon of 300 corners with an int count: vcglib kept 44 of them (300 mod 256).
+  std::string ring = "ply\nformat ascii 1.0\nelement vertex 300\nproperty float x\nproperty float y\nproperty float z\n"
+                     "element face 1\nproperty list int int vertex_indices\nend_header\n";
+  for (int i = 0; i < 300; ++i)
+    ring += std::to_string(std::cos(i * 2 * M_PI / 300)) + " " + std::to_string(std::sin(i * 2 * M_PI / 300)) + " 0\n";
+  ring += "300";
+  for (int i = 0; i < 300; ++i) ring += " " + std::to_string(i);
+  EXPECT_EQ(read_mesh(write("ring.ply", ring + "\n")).triangles.size(), 298u);
 }
 
 TEST_F(MeshIo, off_variants_are_read) {

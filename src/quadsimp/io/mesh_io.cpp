@@ -1,10 +1,11 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 //
-// The only file that sees vcglib's I/O. vcglib triangulates polygons on import and
-// marks the inner edges "faux"; MeshLab stores its quads the same way (and writes the
-// flags to PLY with -m ff). So one path serves every format: read triangles with
-// face flags, then regroup triangles joined by a faux edge into polygons. OBJ and OFF
-// are read by read_obj.cpp and read_off.cpp (why is said there) into the same form.
+// The only file that sees vcglib's I/O: it reads STL and old Stanford PLY files (triangle
+// strips, range grids), and writes PLY and OFF. PLY, OBJ and OFF are read by
+// read_ply.cpp, read_obj.cpp and read_off.cpp (why is said there). Every reader gives
+// triangles with "faux" flags on the inner edges of polygons, the way vcglib and MeshLab
+// store quads (MeshLab writes the flags to PLY with -m ff), and the triangles joined by
+// a faux edge are regrouped into quads.
 #include "quadsimp/io/mesh_io.h"
 
 #include <algorithm>
@@ -216,6 +217,8 @@ MeshFile read_mesh(const std::string& path) {
     file = read_off(path);
   } else if (ext == "obj") {
     file = read_obj(path);
+  } else if (auto ply = ext == "ply" ? read_ply(path) : std::nullopt) {
+    file = std::move(*ply);
   } else {
     TMesh m;
     load_vcg(path, m);

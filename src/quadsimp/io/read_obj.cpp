@@ -26,7 +26,7 @@ MeshFile read_obj(const std::string& path) {
       Vec3 p;
       for (int k = 0; k < 3; ++k)
         if (!detail::parse_number(in[k + 1], p[k]))
-          in.fail("'" + std::string(in[k + 1]) + "' is not a number (a vertex coordinate)");
+          in.fail(detail::quoted(in[k + 1]) + " is not a number (a vertex coordinate)");
       positions.push_back(p);
     } else if (kw == "f" || kw == "q") {
       // Corners count from 1, or back from -1, over the vertices above the line; the
@@ -36,7 +36,7 @@ MeshFile read_obj(const std::string& path) {
       for (std::size_t i = 1; i < in.size(); ++i) {
         long long c;
         if (!detail::parse_number(in[i].substr(0, in[i].find('/')), c))
-          in.fail("'" + std::string(in[i]) + "' is not a vertex number (a face corner)");
+          in.fail(detail::quoted(in[i]) + " is not a vertex number (a face corner)");
         const long long index = qobj ? c : c > 0 ? c - 1 : n() + c;
         if ((!qobj && c == 0) || index < 0 || index >= n())
           in.fail("face corner " + std::to_string(c) + " names no vertex (only " + std::to_string(n()) +
@@ -44,7 +44,7 @@ MeshFile read_obj(const std::string& path) {
         corners.push_back(Index(index));
       }
       if (qobj && corners.size() != 4) in.fail("a QOBJ quad ('q') with " + std::to_string(corners.size()) + " corners");
-      detail::fan(corners, triangles, faux);  // fewer than three corners: no face
+      detail::fan(corners.data(), corners.size(), triangles, faux);  // fewer than three corners: no face
     }
   }
   return pair_faux_triangles(std::move(positions), std::move(triangles), faux);

@@ -28,9 +28,9 @@ MeshFile read_off(const std::string& path) {
   // out the space: "OFF490 518 0").
   const std::string_view word = in[0];
   const std::size_t off = word.find("OFF");
-  if (off == std::string_view::npos) in.fail("'" + std::string(word) + "' is not an OFF header");
+  if (off == std::string_view::npos) in.fail(detail::quoted(word) + " is not an OFF header");
   for (const char c : word.substr(0, off))
-    if (c == '4' || c == 'n') in.fail("'" + std::string(word) + "': only three-dimensional OFF is read");
+    if (c == '4' || c == 'n') in.fail(detail::quoted(word) + ": only three-dimensional OFF is read");
   std::vector<std::string_view> counts(in.fields().begin() + 1, in.fields().end());
   if (off + 3 < word.size()) counts.insert(counts.begin(), word.substr(off + 3));
   if (!counts.empty() && counts[0] == "BINARY") in.fail("binary OFF is not read (ASCII only)");
@@ -58,7 +58,7 @@ MeshFile read_off(const std::string& path) {
     if (in.size() < 3) in.fail("a vertex needs three coordinates");
     Vec3 p;
     for (int k = 0; k < 3; ++k)
-      if (!parse_number(in[k], p[k])) in.fail("'" + std::string(in[k]) + "' is not a number (a vertex coordinate)");
+      if (!parse_number(in[k], p[k])) in.fail(detail::quoted(in[k]) + " is not a number (a vertex coordinate)");
     positions.push_back(p);
   }
 
@@ -66,7 +66,7 @@ MeshFile read_off(const std::string& path) {
   for (long long f = 0; f < nf; ++f) {
     if (!in.next()) in.ends("after " + std::to_string(f) + " of its " + std::to_string(nf) + " faces");
     long long n;
-    if (!parse_number(in[0], n)) in.fail("'" + std::string(in[0]) + "' is not a corner count (a face)");
+    if (!parse_number(in[0], n)) in.fail(detail::quoted(in[0]) + " is not a corner count (a face)");
     if (n < 2) in.fail("a face listed with only " + std::to_string(n) + " corner(s)");
     std::size_t first = 1;
     if (in.size() == 1) {  // the count alone, the corners on the next line
@@ -79,12 +79,12 @@ MeshFile read_off(const std::string& path) {
     corners.clear();
     for (std::size_t k = first; k < first + std::size_t(n); ++k) {
       long long c;
-      if (!parse_number(in[k], c)) in.fail("'" + std::string(in[k]) + "' is not a vertex number (a face corner)");
+      if (!parse_number(in[k], c)) in.fail(detail::quoted(in[k]) + " is not a vertex number (a face corner)");
       if (c < 0 || c >= nv)
         in.fail("face corner " + std::to_string(c) + " names no vertex (the file has " + std::to_string(nv) + ")");
       corners.push_back(Index(c));
     }
-    if (n > 2) detail::fan(corners, triangles, faux);  // two corners: an edge, not a face
+    if (n > 2) detail::fan(corners.data(), corners.size(), triangles, faux);  // two corners: an edge, not a face
   }
   return pair_faux_triangles(std::move(positions), std::move(triangles), faux);
 }

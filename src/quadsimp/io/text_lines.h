@@ -1,6 +1,6 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Lines of a text mesh file (OBJ, OFF) split into fields, '#' comments and blank lines
+// Lines of a text mesh file (OBJ, OFF, a PLY header) split into fields, '#' comments and blank lines
 // skipped, numbered for messages; numbers read from whole fields ("0.5x" is not a
 // number, where atof takes it for 0.5).
 #pragma once
@@ -27,6 +27,24 @@ bool parse_number(std::string_view field, T& x) {
   return r.ec == std::errc() && r.ptr == field.data() + field.size();
 }
 
+//! A field of the file quoted for a message: bytes that are not printable ASCII shown
+//! as '?', and at most 40 of them, so that a binary file's bytes stay out of the terminal.
+inline std::string quoted(std::string_view field) {
+  std::string q = "'";
+  for (std::size_t i = 0; i < std::min<std::size_t>(field.size(), 40); ++i)
+    q += field[i] >= 0x20 && field[i] < 0x7f ? field[i] : '?';
+  return q + (field.size() > 40 ? "...'" : "'");
+}
+
+inline void split_fields(std::string_view line, std::vector<std::string_view>& fields) {
+  fields.clear();
+  for (std::size_t b = line.find_first_not_of(" \t\r"); b != std::string_view::npos;) {
+    const std::size_t e = std::min(line.find_first_of(" \t\r", b), line.size());
+    fields.push_back(line.substr(b, e - b));
+    b = line.find_first_not_of(" \t\r", e);
+  }
+}
+
 class TextLines {
  public:
   explicit TextLines(const std::string& path) : path_(path), in_(path) {
@@ -37,13 +55,7 @@ class TextLines {
   bool next() {
     while (std::getline(in_, line_)) {
       if (++number_ == 1 && line_.rfind("\xEF\xBB\xBF", 0) == 0) line_.erase(0, 3);  // a UTF-8 byte order mark
-      fields_.clear();
-      const std::string_view l = std::string_view(line_).substr(0, line_.find('#'));
-      for (std::size_t b = l.find_first_not_of(" \t\r"); b != std::string_view::npos;) {
-        const std::size_t e = std::min(l.find_first_of(" \t\r", b), l.size());
-        fields_.push_back(l.substr(b, e - b));
-        b = l.find_first_not_of(" \t\r", e);
-      }
+      split_fields(std::string_view(line_).substr(0, line_.find('#')), fields_);
       if (!fields_.empty()) return true;
     }
     return false;
@@ -68,13 +80,14 @@ class TextLines {
   std::vector<std::string_view> fields_;
 };
 
-//! Appends polygon `corners` fanned from its first corner, with bit k of each flag
-//! marking edge k (corner k to k+1) as inside the polygon, as vcglib's readers mark them.
-inline void fan(const std::vector<Index>& corners, std::vector<std::array<Index, 3>>& triangles,
+//! Appends the polygon of corners c[0..n) fanned from its first corner, with bit k of
+//! each flag marking edge k (corner k to k+1) as inside the polygon, as vcglib and
+//! MeshLab mark them.
+inline void fan(const Index* c, std::size_t n, std::vector<std::array<Index, 3>>& triangles,
                 std::vector<std::uint8_t>& faux) {
-  for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
-    triangles.push_back({corners[0], corners[i], corners[i + 1]});
-    faux.push_back(std::uint8_t((i > 1 ? 1u : 0u) | (i + 2 < corners.size() ? 4u : 0u)));
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    triangles.push_back({c[0], c[i], c[i + 1]});
+    faux.push_back(std::uint8_t((i > 1 ? 1u : 0u) | (i + 2 < n ? 4u : 0u)));
   }
 }
 

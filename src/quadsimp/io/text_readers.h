@@ -1,14 +1,15 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "quadsimp/mesh/mesh_file.h"
 
 namespace qs {
 
-// Quads come back as quads; larger polygons are fanned into triangles from their first
-// corner, as vcglib's PLY reader does. \throw InvalidInput "PATH: line N: reason" for
+// Quads come back as quads (also MeshLab's triangle pairs whose shared edge a PLY's face
+// flags mark faux); larger polygons are fanned into triangles from their first corner. \throw InvalidInput "PATH: line N: reason" for
 // anything they cannot read as stated.
 
 //! ASCII OFF ("[ST][C][N]OFF", one vertex and one face per line, colours and normals
@@ -18,5 +19,9 @@ MeshFile read_off(const std::string& path);
 //! OBJ: "v" and "f" lines (corners from 1, or back from -1; "q": QOBJ's zero-based
 //! quads); normals, texture coordinates, groups and materials ignored.
 MeshFile read_obj(const std::string& path);
+
+//! PLY, ASCII or binary: vertex x, y, z, the faces' corner lists and flags. nullopt for
+//! old Stanford files with triangle strips or range grids, which vcglib reads.
+std::optional<MeshFile> read_ply(const std::string& path);
 
 }  // namespace qs

@@ -1,0 +1,277 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+//
+// PLY is read here, not by vcglib: its list reader wrote a face's corners into a fixed
+// buffer of 512 with a one-byte count, so a polygon of more than 255 corners was cut
+// short without a word and a longer list overran the buffer (a crash), and it allocated
+// every element a header counts before reading one (300,000,000 vertices in a 188-byte
+// file took 9 GB). Vertex x, y, z and the faces' corner lists and MeshLab's face flags
+// (whose faux bits mark the inner edges of quads stored as triangle pairs) are read;
+// other properties and elements are skipped.
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "quadsimp/io/text_lines.h"
+#include "quadsimp/io/text_readers.h"
+
+namespace qs {
+namespace {
+
+[[noreturn]] void unreadable(const std::string& path, const std::string& why) {
+  throw InvalidInput(path + ": unreadable PLY (" + why + ")");
+}
+
+enum class Type : std::uint8_t { i8, u8, i16, u16, i32, u32, f32, f64 };
+
+bool type_named(std::string_view name, Type& t) {
+  static const std::pair<std::string_view, Type> names[] = {
+      {"char", Type::i8},    {"int8", Type::i8},     {"uchar", Type::u8},   {"uint8", Type::u8},
+      {"short", Type::i16},  {"int16", Type::i16},   {"ushort", Type::u16}, {"uint16", Type::u16},
+      {"int", Type::i32},    {"int32", Type::i32},   {"uint", Type::u32},   {"uint32", Type::u32},
+      {"float", Type::f32},  {"float32", Type::f32}, {"double", Type::f64}, {"float64", Type::f64}};
+  for (const auto& [n, type] : names)
+    if (n == name) return t = type, true;
+  return false;
+}
+
+std::size_t size_of(Type t) {
+  static constexpr std::size_t sizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
+  return sizes[std::size_t(t)];
+}
+
+struct Property {
+  std::string name;
+  bool list = false;
+  Type count = Type::u8, value = Type::f32;
+};
+
+struct Element {
+  std::string name;
+  long long count = 0;
+  std::vector<Property> properties;
+  int find(std::string_view n) const {
+    for (std::size_t i = 0; i < properties.size(); ++i)
+      if (properties[i].name == n) return int(i);
+    return -1;
+  }
+};
+
+// The body as a stream of values: ASCII fields, or binary in either byte order.
+class Values {
+ public:
+  enum class Format { ascii, little, big };
+
+  Values(std::string_view body, Format format) : body_(body), format_(format) {}
+
+  // The next value as a double (indices up to 2^32 are exact); false when the data ends
+  // or an ASCII field is not a number of the type.
+  bool next(Type t, double& x) {
+    if (format_ == Format::ascii) return next_ascii(t, x);
+    const std::size_t n = size_of(t);
+    if (body_.size() - pos_ < n) return false;
+    unsigned char b[8];
+    std::memcpy(b, body_.data() + pos_, n);
+    pos_ += n;
+    if ((format_ == Format::big) == little_endian_host()) std::reverse(b, b + n);
+    switch (t) {
+      case Type::i8: x = double(std::int8_t(b[0])); break;
+      case Type::u8: x = double(b[0]); break;
+      case Type::i16: x = double(load<std::int16_t>(b)); break;
+      case Type::u16: x = double(load<std::uint16_t>(b)); break;
+      case Type::i32: x = double(load<std::int32_t>(b)); break;
+      case Type::u32: x = double(load<std::uint32_t>(b)); break;
+      case Type::f32: x = double(load<float>(b)); break;
+      case Type::f64: x = load<double>(b); break;
+    }
+    return true;
+  }
+
+  // Bytes left, an upper bound on the values left in either format.
+  std::size_t left() const { return body_.size() - pos_; }
+
+ private:
+  static bool little_endian_host() {
+    const std::uint16_t one = 1;
+    unsigned char c;
+    std::memcpy(&c, &one, 1);
+    return c == 1;
+  }
+  template <class T>
+  static T load(const unsigned char* b) {
+    T v;
+    std::memcpy(&v, b, sizeof v);
+    return v;
+  }
+
+  bool next_ascii(Type t, double& x) {
+    while (pos_ < body_.size() && std::strchr(" \t\r\n", body_[pos_]) && body_[pos_] != '\0') ++pos_;
+    std::size_t end = pos_;
+    while (end < body_.size() && !std::strchr(" \t\r\n", body_[end])) ++end;
+    if (end == pos_) return false;
+    const std::string_view field = body_.substr(pos_, end - pos_);
+    pos_ = end;
+    if (t == Type::f32) {  // as a float, rounded once, as a binary file would hold it
+      float f;
+      if (!detail::parse_number(field, f)) return false;
+      x = double(f);
+      return true;
+    }
+    if (t == Type::f64) return detail::parse_number(field, x);
+    long long i;
+    if (!detail::parse_number(field, i)) return false;
+    x = double(i);
+    return true;
+  }
+
+  std::string_view body_;
+  Format format_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+std::optional<MeshFile> read_ply(const std::string& path) {
+  const auto fail = [&path](const std::string& why) { unreadable(path, why); };
+  std::ifstream in(path, std::ios::binary);
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+
+  // The header: lines up to "end_header".
+  std::vector<Element> elements;
+  Values::Format format = Values::Format::ascii;
+  std::size_t pos = 0;
+  bool ended = false, formatted = false;
+  std::vector<std::string_view> f;
+  for (int line = 0; !ended && pos < data.size(); ++line) {
+    const std::size_t eol = std::min(data.find('\n', pos), data.size());
+    detail::split_fields(std::string_view(data).substr(pos, eol - pos), f);
+    pos = eol + 1;
+    if (line == 0) {
+      if (f.size() != 1 || f[0] != "ply") fail("the file does not start with 'ply'");
+      continue;
+    }
+    if (f.empty() || f[0] == "comment" || f[0] == "obj_info") continue;
+    if (f[0] == "end_header") {
+      ended = true;
+    } else if (f[0] == "format" && f.size() >= 2) {
+      formatted = true;
+      if (f[1] == "ascii") format = Values::Format::ascii;
+      else if (f[1] == "binary_little_endian") format = Values::Format::little;
+      else if (f[1] == "binary_big_endian") format = Values::Format::big;
+      else fail("unknown format " + detail::quoted(f[1]));
+    } else if (f[0] == "element" && f.size() >= 2) {
+      Element e;
+      e.name = f[1];
+      if (f.size() != 3 || !detail::parse_number(f[2], e.count) || e.count < 0)
+        fail("element " + detail::quoted(e.name) + " has no count");
+      elements.push_back(e);
+    } else if (f[0] == "property" && !elements.empty()) {
+      Property p;
+      const bool list = f.size() == 5 && f[1] == "list";
+      if (list ? !type_named(f[2], p.count) || !type_named(f[3], p.value) : f.size() != 3 || !type_named(f[1], p.value))
+        fail("a property line it does not understand");
+      p.list = list;
+      p.name = f.back();
+      elements.back().properties.push_back(p);
+    } else {
+      fail("a header line it does not understand");
+    }
+  }
+  if (!ended || !formatted) fail("no complete header");
+  for (const Element& e : elements)
+    if (e.name == "tristrips" || e.name == "range_grid") return std::nullopt;
+
+  // No count may pass what the data could hold (a value takes its size in binary, a
+  // digit and a separator in ASCII), so nothing is reserved for more.
+  const std::size_t bytes = data.size() - std::min(pos, data.size());
+  for (const Element& e : elements) {
+    std::size_t least = 0;
+    for (const Property& p : e.properties)
+      least += format == Values::Format::ascii ? 2 : size_of(p.list ? p.count : p.value);
+    if (least > 0 && std::size_t(e.count) > bytes / least)
+      fail("its header counts " + std::to_string(e.count) + " " + detail::quoted(e.name) + " elements in " +
+           std::to_string(bytes) + " bytes of data");
+  }
+
+  Values values(std::string_view(data).substr(std::min(pos, data.size())), format);
+  std::vector<Vec3> positions;
+  std::vector<std::array<Index, 3>> triangles;
+  std::vector<std::uint8_t> faux;
+  // Faces, flat, checked and fanned once all vertices are known (they may come first).
+  std::vector<Index> corners;
+  std::vector<std::size_t> polygon_start{0};
+  std::vector<std::uint8_t> flag_faux;  // the faces' faux bits from their flags
+  bool have_vertices = false, have_faces = false;
+  for (const Element& e : elements) {
+    const bool vertex = e.name == "vertex", face = e.name == "face";
+    if ((vertex && have_vertices) || (face && have_faces)) fail("two " + detail::quoted(e.name) + " elements");
+    const int xyz[3] = {e.find("x"), e.find("y"), e.find("z")};
+    if (vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)) fail("vertices without x, y and z");
+    int list = face ? e.find("vertex_indices") : -1;
+    if (face && list < 0) list = e.find("vertex_index");
+    if (face && (list < 0 || !e.properties[std::size_t(list)].list)) fail("faces without a list of vertex indices");
+    const int flags = face ? e.find("flags") : -1;
+    have_vertices |= vertex;
+    have_faces |= face;
+    if (e.properties.empty()) continue;  // nothing to read, however many
+    if (vertex) positions.reserve(std::size_t(e.count));
+    if (face) polygon_start.reserve(std::size_t(e.count) + 1);
+
+    for (long long i = 0; i < e.count; ++i) {
+      Vec3 p = Vec3::Zero();
+      std::uint32_t face_flags = 0;
+      const std::size_t first_corner = corners.size();
+      for (std::size_t k = 0; k < e.properties.size(); ++k) {
+        const Property& prop = e.properties[k];
+        double x;
+        if (!prop.list) {
+          if (!values.next(prop.value, x)) fail("its data ends, or is not a number, in " + detail::quoted(e.name) + " " + std::to_string(i));
+          for (int c = 0; c < 3; ++c)
+            if (vertex && int(k) == xyz[c]) p[c] = x;
+          if (face && int(k) == flags) face_flags = std::uint32_t(std::int64_t(x));
+          continue;
+        }
+        double n;
+        if (!values.next(prop.count, n) || n < 0 || n > double(values.left()))
+          fail("a list that is not there, or longer than the file, in " + detail::quoted(e.name) + " " + std::to_string(i));
+        for (long long j = 0; j < static_cast<long long>(n); ++j) {
+          if (!values.next(prop.value, x)) fail("its data ends, or is not a number, in " + detail::quoted(e.name) + " " + std::to_string(i));
+          if (face && int(k) == list) {
+            if (x < 0 || x > double(std::numeric_limits<Index>::max())) fail("Bad vertex index in face");
+            corners.push_back(Index(x));
+          }
+        }
+      }
+      if (vertex) positions.push_back(p);
+      if (face) {
+        const std::size_t n = corners.size() - first_corner;
+        if (n < 3) fail("face " + std::to_string(i) + " has " + std::to_string(n) + " corners");
+        if (face_flags & 1u) {  // vcglib's deleted bit
+          corners.resize(first_corner);
+          continue;
+        }
+        polygon_start.push_back(corners.size());
+        flag_faux.push_back(std::uint8_t((face_flags >> 18) & 7u));  // FAUX0..2 = 0x40000 << k
+      }
+    }
+  }
+  for (const Index c : corners)
+    if (c >= positions.size()) fail("Bad vertex index in face");
+  triangles.reserve(corners.size());
+  faux.reserve(corners.size());
+  for (std::size_t i = 0; i + 1 < polygon_start.size(); ++i) {
+    const std::size_t first = faux.size();
+    detail::fan(corners.data() + polygon_start[i], polygon_start[i + 1] - polygon_start[i], triangles, faux);
+    faux[first] |= flag_faux[i];
+  }
+  return pair_faux_triangles(std::move(positions), std::move(triangles), faux);
+}
+
+}  // namespace qs
