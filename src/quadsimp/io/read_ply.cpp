@@ -189,13 +189,14 @@ std::optional<MeshFile> read_ply(const std::string& path) {
     if (e.name == "tristrips" || e.name == "range_grid") return std::nullopt;
 
   // No count may pass what the data could hold (a value takes its size in binary, a
-  // digit and a separator in ASCII), so nothing is reserved for more.
+  // digit and a separator in ASCII, where the last separator may be missing), so nothing
+  // is reserved for more.
   const std::size_t bytes = data.size() - std::min(pos, data.size());
+  const bool ascii = format == Values::Format::ascii;
   for (const Element& e : elements) {
     std::size_t least = 0;
-    for (const Property& p : e.properties)
-      least += format == Values::Format::ascii ? 2 : size_of(p.list ? p.count : p.value);
-    if (least > 0 && std::size_t(e.count) > bytes / least)
+    for (const Property& p : e.properties) least += ascii ? 2 : size_of(p.list ? p.count : p.value);
+    if (least > 0 && std::size_t(e.count) > (bytes + (ascii ? 1 : 0)) / least)
       fail("its header counts " + std::to_string(e.count) + " " + detail::quoted(e.name) + " elements in " +
            std::to_string(bytes) + " bytes of data");
   }
