@@ -286,15 +286,17 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
   EXPECT_FALSE(error_of(bad_index).empty());
   // ... in a quad, which vcglib splits without checking (it crashed).
   const std::string bad_quad = write("idxq.ply", ply_header(4, 1) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 7\n");
-  EXPECT_NE(error_of(bad_quad).find("unreadable PLY (Bad vertex index in face)"), std::string::npos);
+  EXPECT_NE(error_of(bad_quad).find("unreadable PLY (a face corner 7 names no vertex (the file has 4))"), std::string::npos);
 
   // Corners naming no vertex: vcglib's readers look them up unchecked (all crashed).
   const std::string square = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
   const std::string ply_head = ply_header(4, 1);
   const std::string obj_square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
   const std::pair<std::string, std::string> cases[] = {
-      {write("far.ply", ply_head + square + "4 0 1 2 100000000\n"), "unreadable PLY (Bad vertex index in face)"},
-      {write("neg.ply", ply_head + square + "4 0 1 2 -100000000\n"), "unreadable PLY (Bad vertex index in face)"},
+      {write("far.ply", ply_head + square + "4 0 1 2 100000000\n"),
+       "unreadable PLY (a face corner 100000000 names no vertex (the file has 4))"},
+      {write("neg.ply", ply_head + square + "4 0 1 2 -100000000\n"),
+       "unreadable PLY (face 0: corner -100000000 names no vertex)"},
       {write("far.off", "OFF\n4 1 0\n" + square + "4 0 1 2 100000000\n"),
        "line 7: face corner 100000000 names no vertex (the file has 4)"},
       {write("neg.off", "OFF\n4 1 0\n" + square + "3 0 -1 2\n"), "line 7: face corner -1 names no vertex"},

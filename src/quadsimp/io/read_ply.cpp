@@ -245,7 +245,8 @@ std::optional<MeshFile> read_ply(const std::string& path) {
         for (long long j = 0; j < static_cast<long long>(n); ++j) {
           if (!values.next(prop.value, x)) fail("its data ends, or is not a number, in " + detail::quoted(e.name) + " " + std::to_string(i));
           if (face && int(k) == list) {
-            if (x < 0 || x > double(std::numeric_limits<Index>::max())) fail("Bad vertex index in face");
+            if (x < 0 || x > double(std::numeric_limits<Index>::max()))
+              fail("face " + std::to_string(i) + ": corner " + std::to_string(static_cast<long long>(x)) + " names no vertex");
             corners.push_back(Index(x));
           }
         }
@@ -264,7 +265,8 @@ std::optional<MeshFile> read_ply(const std::string& path) {
     }
   }
   for (const Index c : corners)
-    if (c >= positions.size()) fail("Bad vertex index in face");
+    if (c >= positions.size())
+      fail("a face corner " + std::to_string(c) + " names no vertex (the file has " + std::to_string(positions.size()) + ")");
   triangles.reserve(corners.size());
   faux.reserve(corners.size());
   for (std::size_t i = 0; i + 1 < polygon_start.size(); ++i) {
