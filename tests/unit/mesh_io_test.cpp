@@ -322,6 +322,10 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
       {write("flat.off", "OFF\n4 1 0\n0 0\n"), "line 3: a vertex needs three coordinates"},
       {write("huge.ply", "ply\nformat ascii 1.0\nelement vertex 300000000\nproperty float x\nend_header\n0\n"),
        "unreadable PLY (its header counts 300000000 'vertex' elements in 2 bytes of data)"},
+      {write("strips.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                           "element tristrips 300000000\nproperty list int int vertex_indices\nend_header\n"
+                           "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+       "unreadable PLY (its header counts 300000000 'tristrips' elements in"},
       {write("nocount.ply", "ply\nformat ascii 1.0\nelement vertex\nproperty float x\nend_header\n0\n"),
        "unreadable PLY (element 'vertex' has no count)"},
   };

@@ -185,12 +185,10 @@ std::optional<MeshFile> read_ply(const std::string& path) {
     }
   }
   if (!ended || !formatted) fail("no complete header");
-  for (const Element& e : elements)
-    if (e.name == "tristrips" || e.name == "range_grid") return std::nullopt;
 
   // No count may pass what the data could hold (a value takes its size in binary, a
   // digit and a separator in ASCII, where the last separator may be missing), so nothing
-  // is reserved for more.
+  // is reserved for more, here or in vcglib, which reads the old files below.
   const std::size_t bytes = data.size() - std::min(pos, data.size());
   const bool ascii = format == Values::Format::ascii;
   for (const Element& e : elements) {
@@ -200,6 +198,8 @@ std::optional<MeshFile> read_ply(const std::string& path) {
       fail("its header counts " + std::to_string(e.count) + " " + detail::quoted(e.name) + " elements in " +
            std::to_string(bytes) + " bytes of data");
   }
+  for (const Element& e : elements)
+    if (e.name == "tristrips" || e.name == "range_grid") return std::nullopt;
 
   Values values(std::string_view(data).substr(std::min(pos, data.size())), format);
   std::vector<Vec3> positions;
