@@ -69,18 +69,19 @@ class Values {
  public:
   enum class Format { ascii, little, big };
 
-  Values(std::string_view body, Format format) : body_(body), format_(format) {}
+  Values(std::string_view body, Format format)
+      : body_(body), ascii_(format == Format::ascii), swap_((format == Format::big) == little_endian_host()) {}
 
   // The next value as a double (indices up to 2^32 are exact); false when the data ends
   // or an ASCII field is not a number of the type.
   bool next(Type t, double& x) {
-    if (format_ == Format::ascii) return next_ascii(t, x);
+    if (ascii_) return next_ascii(t, x);
     const std::size_t n = size_of(t);
     if (body_.size() - pos_ < n) return false;
     unsigned char b[8];
     std::memcpy(b, body_.data() + pos_, n);
     pos_ += n;
-    if ((format_ == Format::big) == little_endian_host()) std::reverse(b, b + n);
+    if (swap_) std::reverse(b, b + n);
     switch (t) {
       case Type::i8: x = double(std::int8_t(b[0])); break;
       case Type::u8: x = double(b[0]); break;
@@ -111,10 +112,12 @@ class Values {
     return v;
   }
 
+  static bool space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+
   bool next_ascii(Type t, double& x) {
-    while (pos_ < body_.size() && std::strchr(" \t\r\n", body_[pos_]) && body_[pos_] != '\0') ++pos_;
+    while (pos_ < body_.size() && space(body_[pos_])) ++pos_;
     std::size_t end = pos_;
-    while (end < body_.size() && !std::strchr(" \t\r\n", body_[end])) ++end;
+    while (end < body_.size() && !space(body_[end])) ++end;
     if (end == pos_) return false;
     const std::string_view field = body_.substr(pos_, end - pos_);
     pos_ = end;
@@ -132,7 +135,7 @@ class Values {
   }
 
   std::string_view body_;
-  Format format_;
+  bool ascii_, swap_;  // swap_: the file's byte order is not this machine's
   std::size_t pos_ = 0;
 };
 
