@@ -22,21 +22,14 @@ MeshFile read_obj(const std::string& path) {
   while (in.next()) {
     const std::string_view kw = in[0];
     if (kw == "v") {
-      if (in.size() < 4) in.fail("a vertex needs three coordinates");
-      Vec3 p;
-      for (int k = 0; k < 3; ++k)
-        if (!detail::parse_number(in[k + 1], p[k]))
-          in.fail(detail::quoted(in[k + 1]) + " is not a number (a vertex coordinate)");
-      positions.push_back(p);
+      positions.push_back(in.position(1));
     } else if (kw == "f" || kw == "q") {
       // Corners count from 1, or back from -1, over the vertices above the line; the
       // zero-based QOBJ variant's "q" quads count from 0.
       const bool qobj = kw == "q";
       corners.clear();
       for (std::size_t i = 1; i < in.size(); ++i) {
-        long long c;
-        if (!detail::parse_number(in[i].substr(0, in[i].find('/')), c))
-          in.fail(detail::quoted(in[i]) + " is not a vertex number (a face corner)");
+        const long long c = in.whole_number(i, "a vertex number (a face corner)", in[i].find('/'));
         const long long index = qobj ? c : c > 0 ? c - 1 : n() + c;
         if ((!qobj && c == 0) || index < 0 || index >= n())
           in.fail("face corner " + std::to_string(c) + " names no vertex (only " + std::to_string(n()) +

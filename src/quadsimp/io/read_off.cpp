@@ -55,18 +55,13 @@ MeshFile read_off(const std::string& path) {
 
   for (long long i = 0; i < nv; ++i) {
     if (!in.next()) in.ends("after " + std::to_string(i) + " of its " + std::to_string(nv) + " vertices");
-    if (in.size() < 3) in.fail("a vertex needs three coordinates");
-    Vec3 p;
-    for (int k = 0; k < 3; ++k)
-      if (!parse_number(in[k], p[k])) in.fail(detail::quoted(in[k]) + " is not a number (a vertex coordinate)");
-    positions.push_back(p);
+    positions.push_back(in.position(0));
   }
 
   std::vector<Index> corners;
   for (long long f = 0; f < nf; ++f) {
     if (!in.next()) in.ends("after " + std::to_string(f) + " of its " + std::to_string(nf) + " faces");
-    long long n;
-    if (!parse_number(in[0], n)) in.fail(detail::quoted(in[0]) + " is not a corner count (a face)");
+    const long long n = in.whole_number(0, "a corner count (a face)");
     if (n < 2) in.fail("a face listed with only " + std::to_string(n) + " corner(s)");
     std::size_t first = 1;
     if (in.size() == 1) {  // the count alone, the corners on the next line
@@ -78,8 +73,7 @@ MeshFile read_off(const std::string& path) {
       in.fail("a face of " + std::to_string(n) + " corners lists " + std::to_string(in.size() - first));
     corners.clear();
     for (std::size_t k = first; k < first + std::size_t(n); ++k) {
-      long long c;
-      if (!parse_number(in[k], c)) in.fail(detail::quoted(in[k]) + " is not a vertex number (a face corner)");
+      const long long c = in.whole_number(k, "a vertex number (a face corner)");
       if (c < 0 || c >= nv)
         in.fail("face corner " + std::to_string(c) + " names no vertex (the file has " + std::to_string(nv) + ")");
       corners.push_back(Index(c));

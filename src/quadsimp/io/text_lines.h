@@ -61,6 +61,24 @@ class TextLines {
     return false;
   }
 
+  //! Fields [from, from + 3) as a position.
+  Vec3 position(std::size_t from) const {
+    if (fields_.size() < from + 3) fail("a vertex needs three coordinates");
+    Vec3 p;
+    for (int k = 0; k < 3; ++k)
+      if (!parse_number(fields_[from + k], p[k]))
+        fail(quoted(fields_[from + k]) + " is not a number (a vertex coordinate)");
+    return p;
+  }
+
+  //! The first `length` characters of field i as a whole number; `what` names it in the
+  //! message if they are not one.
+  long long whole_number(std::size_t i, const char* what, std::size_t length = std::string_view::npos) const {
+    long long x;
+    if (!parse_number(fields_[i].substr(0, length), x)) fail(quoted(fields_[i]) + " is not " + what);
+    return x;
+  }
+
   const std::vector<std::string_view>& fields() const { return fields_; }
   std::string_view operator[](std::size_t i) const { return fields_[i]; }
   std::size_t size() const { return fields_.size(); }
