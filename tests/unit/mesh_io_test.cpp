@@ -49,6 +49,13 @@ std::string ply_header(int nv, int nf, const std::string& face_extra = "") {
          "\nproperty list uchar int vertex_indices\n" + face_extra + "end_header\n";
 }
 
+// OBJ vertex lines for rows of "x y z\n".
+std::string obj_vertices(const std::string& rows) {
+  std::string obj;
+  for (std::size_t b = 0, e; (e = rows.find('\n', b)) != std::string::npos; b = e + 1) obj += "v " + rows.substr(b, e - b + 1);
+  return obj;
+}
+
 std::string error_of(const std::string& p) {
   try {
     read_mesh(p);
@@ -169,9 +176,7 @@ TEST_F(MeshIo, polygons_of_five_corners_in_every_format) {
       ply_header(10, 2) + v + "5 0 1 2 3 4\n5 5 6 7 8 9\n");
   // The second face's count stands alone, its corners on the next line, as vcglib allows.
   const std::string off = write("p.off", "OFF\n10 2 0\n" + v + "5 0 1 2 3 4\n5\n5 6 7 8 9\n");
-  std::string obj_text;
-  for (std::size_t b = 0, e; (e = v.find('\n', b)) != std::string::npos; b = e + 1) obj_text += "v " + v.substr(b, e - b + 1);
-  const std::string obj = write("p.obj", obj_text + "f 1 2 3 4 5\nf -5 -4 -3 -2 -1\n");
+  const std::string obj = write("p.obj", obj_vertices(v) + "f 1 2 3 4 5\nf -5 -4 -3 -2 -1\n");
   for (const auto& p : {ply, off, obj}) {
     SCOPED_TRACE(p);
     const MeshFile f = read_mesh(p);
@@ -363,9 +368,7 @@ TEST_F(MeshIo, text_files_with_comments_colours_and_signs_are_read) {
 // this under ASan and UBSan, where it is clean).
 TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
   const std::string corners = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 2 0\n2 0 0\n2 1 0\n";
-  std::string obj;
-  for (std::size_t b = 0, e; (e = corners.find('\n', b)) != std::string::npos; b = e + 1)
-    obj += "v " + corners.substr(b, e - b + 1);
+  const std::string obj = obj_vertices(corners);
   write_tri_mesh_ply(path("binary.ply"), tri_sphere(3, 4));
   std::ifstream binary_in(path("binary.ply"), std::ios::binary);
   const std::string binary_ply((std::istreambuf_iterator<char>(binary_in)), std::istreambuf_iterator<char>());
