@@ -139,25 +139,25 @@ class Values {
   std::size_t pos_ = 0;
 };
 
-}  // namespace
-
-std::optional<MeshFile> read_ply(const std::string& path) {
-  const auto fail = [&path](const std::string& why) { unreadable(path, why); };
-  std::ifstream in(path, std::ios::binary);
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-
-  // The header: lines up to "end_header".
+// The header, checked against the data: its elements, the data's format, where the
+// data starts.
+struct Header {
   std::vector<Element> elements;
   Values::Format format = Values::Format::ascii;
-  std::size_t pos = 0;
+  std::size_t data = 0;
+};
+
+Header read_header(const std::string& path, const std::string& file) {
+  Header h;
   bool ended = false, formatted = false;
   std::vector<std::string_view> f;
-  for (int line = 0; !ended && pos < data.size(); ++line) {
-    const std::size_t eol = std::min(data.find('\n', pos), data.size());
-    detail::split_fields(std::string_view(data).substr(pos, eol - pos), f);
+  std::size_t pos = 0;
+  for (int line = 0; !ended && pos < file.size(); ++line) {
+    const std::size_t eol = std::min(file.find('\n', pos), file.size());
+    detail::split_fields(std::string_view(file).substr(pos, eol - pos), f);
     pos = eol + 1;
     if (line == 0) {
-      if (f.size() != 1 || f[0] != "ply") fail("the file does not start with 'ply'");
+      if (f.size() != 1 || f[0] != "ply") unreadable(path, "the file does not start with 'ply'");
       continue;
     }
     if (f.empty() || f[0] == "comment" || f[0] == "obj_info") continue;
@@ -165,46 +165,57 @@ std::optional<MeshFile> read_ply(const std::string& path) {
       ended = true;
     } else if (f[0] == "format" && f.size() >= 2) {
       formatted = true;
-      if (f[1] == "ascii") format = Values::Format::ascii;
-      else if (f[1] == "binary_little_endian") format = Values::Format::little;
-      else if (f[1] == "binary_big_endian") format = Values::Format::big;
-      else fail("unknown format " + detail::quoted(f[1]));
+      if (f[1] == "ascii") h.format = Values::Format::ascii;
+      else if (f[1] == "binary_little_endian") h.format = Values::Format::little;
+      else if (f[1] == "binary_big_endian") h.format = Values::Format::big;
+      else unreadable(path, "unknown format " + detail::quoted(f[1]));
     } else if (f[0] == "element" && f.size() >= 2) {
       Element e;
       e.name = f[1];
       if (f.size() != 3 || !detail::parse_number(f[2], e.count) || e.count < 0)
-        fail("element " + detail::quoted(e.name) + " has no count");
-      elements.push_back(e);
-    } else if (f[0] == "property" && !elements.empty()) {
+        unreadable(path, "element " + detail::quoted(e.name) + " has no count");
+      h.elements.push_back(e);
+    } else if (f[0] == "property" && !h.elements.empty()) {
       Property p;
       const bool list = f.size() == 5 && f[1] == "list";
       if (list ? !type_named(f[2], p.count) || !type_named(f[3], p.value) : f.size() != 3 || !type_named(f[1], p.value))
-        fail("a property line it does not understand");
+        unreadable(path, "a property line it does not understand");
       p.list = list;
       p.name = f.back();
-      elements.back().properties.push_back(p);
+      h.elements.back().properties.push_back(p);
     } else {
-      fail("a header line it does not understand");
+      unreadable(path, "a header line it does not understand");
     }
   }
-  if (!ended || !formatted) fail("no complete header");
+  if (!ended || !formatted) unreadable(path, "no complete header");
+  h.data = std::min(pos, file.size());
 
   // No count may pass what the data could hold (a value takes its size in binary, a
   // digit and a separator in ASCII, where the last separator may be missing), so nothing
-  // is reserved for more, here or in vcglib, which reads the old files below.
-  const std::size_t bytes = data.size() - std::min(pos, data.size());
-  const bool ascii = format == Values::Format::ascii;
-  for (const Element& e : elements) {
+  // is reserved for more, here or in vcglib, which reads the old files.
+  const std::size_t bytes = file.size() - h.data;
+  const bool ascii = h.format == Values::Format::ascii;
+  for (const Element& e : h.elements) {
     std::size_t least = 0;
     for (const Property& p : e.properties) least += ascii ? 2 : size_of(p.list ? p.count : p.value);
     if (least > 0 && std::size_t(e.count) > (bytes + (ascii ? 1 : 0)) / least)
-      fail("its header counts " + std::to_string(e.count) + " " + detail::quoted(e.name) + " elements in " +
-           std::to_string(bytes) + " bytes of data");
+      unreadable(path, "its header counts " + std::to_string(e.count) + " " + detail::quoted(e.name) +
+                           " elements in " + std::to_string(bytes) + " bytes of data");
   }
-  for (const Element& e : elements)
+  return h;
+}
+
+}  // namespace
+
+std::optional<MeshFile> read_ply(const std::string& path) {
+  const auto fail = [&path](const std::string& why) { unreadable(path, why); };
+  std::ifstream in(path, std::ios::binary);
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const Header header = read_header(path, data);
+  for (const Element& e : header.elements)
     if (e.name == "tristrips" || e.name == "range_grid") return std::nullopt;
 
-  Values values(std::string_view(data).substr(std::min(pos, data.size())), format);
+  Values values(std::string_view(data).substr(header.data), header.format);
   std::vector<Vec3> positions;
   std::vector<std::array<Index, 3>> triangles;
   std::vector<std::uint8_t> faux;
@@ -213,7 +224,7 @@ std::optional<MeshFile> read_ply(const std::string& path) {
   std::vector<std::size_t> polygon_start{0};
   std::vector<std::uint8_t> flag_faux;  // the faces' faux bits from their flags
   bool have_vertices = false, have_faces = false;
-  for (const Element& e : elements) {
+  for (const Element& e : header.elements) {
     const bool vertex = e.name == "vertex", face = e.name == "face";
     if ((vertex && have_vertices) || (face && have_faces)) fail("two " + detail::quoted(e.name) + " elements");
     const int xyz[3] = {e.find("x"), e.find("y"), e.find("z")};
