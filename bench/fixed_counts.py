@@ -15,7 +15,7 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from paper_table1 import dataset, parse_args, run, table_header  # noqa: E402
+from paper_table1 import meshes, parse_args, run, table_header  # noqa: E402
 
 COUNTS = {"bunny": (600, 900, 1300, 2000), "gargoyle": (800, 1100, 1500, 2000), "armadillo": (1000, 1500, 2000, 3000)}
 
@@ -23,13 +23,9 @@ COUNTS = {"bunny": (600, 900, 1300, 2000), "gargoyle": (800, 1100, 1500, 2000), 
 def main():
     args = parse_args(__doc__, list(COUNTS), samples=300000, adaptive_args=True)
     print(f"Distances sampled with {args.samples} points per surface plus vertices.\n")
-    table_header("| model | quads | uniform RMS e-3 | adaptive RMS e-3 | adaptive lower by | adaptive regular % |")
+    columns = table_header("| model | quads | uniform RMS e-3 | adaptive RMS e-3 | adaptive lower by | adaptive regular % |")
     gains, regular, per_model = [], [], {}
-    for model in args.models:
-        mesh = dataset(args, model)
-        if not mesh:
-            print(f"| {model} | - | not in the datasets | | | |")
-            continue
+    for model, mesh in meshes(args, columns):
         for faces in COUNTS[model]:
             u = run(args.quadsimp, mesh, faces, args.samples)
             a = run(args.quadsimp, mesh, faces, args.samples, ["--adaptive", *args.adaptive_args])

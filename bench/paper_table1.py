@@ -44,15 +44,28 @@ def run(quadsimp, mesh, faces, samples, extra=()):
 
 
 def table_header(header):
-    """Prints a markdown table's header row and the rule under it."""
+    """Prints a markdown table's header row and the rule under it; returns its column count."""
+    columns = header.count("|") - 1
     print(header)
-    print("|" + "---|" * (header.count("|") - 1))
+    print("|" + "---|" * columns)
+    return columns
 
 
 def dataset(args, model):
     """The model's PLY in the datasets folder, or None when it is not there."""
     mesh = os.path.join(args.datasets, model + ".ply")
     return mesh if os.path.exists(mesh) else None
+
+
+def meshes(args, columns=0):
+    """(model, PLY) for each of args.models in the datasets folder. A model that is not
+    there gets a table row saying so when the table's column count is given."""
+    for model in args.models:
+        mesh = dataset(args, model)
+        if mesh:
+            yield model, mesh
+        elif columns:
+            print(f"| {model} | not in {args.datasets} |" + " |" * (columns - 2))
 
 
 def machine():
@@ -90,14 +103,10 @@ def main():
 
     print(f"Machine: {machine()}; single-threaded simplification, distances sampled with "
           f"{args.samples} points per surface plus vertices.\n")
-    table_header("| model | input quads | #faces | time s (paper) | val max (paper) | reg % (paper) | reg % val-4 only "
+    columns = table_header("| model | input quads | #faces | time s (paper) | val max (paper) | reg % (paper) | reg % val-4 only "
                  "| homeo min (paper) | homeo max (paper) | Hausdorff e-3 | RMS e-3 | mean out->in e-3 (paper Dist) "
                  "| non-convex / flipped / folded |")
-    for model in args.models:
-        mesh = dataset(args, model)
-        if not mesh:
-            print(f"| {model} | - | - | not in {args.datasets} | | | | | | | | | |")
-            continue
+    for model, mesh in meshes(args, columns):
         for faces, t, val, reg, hmin, hmax, dist in PAPER[model]:
             r = run(args.quadsimp, mesh, faces, args.samples)
             if r["input_faces"] <= faces:

@@ -21,7 +21,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from paper_table1 import dataset, machine, parse_args, run, table_header  # noqa: E402
+from paper_table1 import dataset, machine, meshes, parse_args, run, table_header  # noqa: E402
 
 # model -> (adaptive: faces, time, val, reg, hmin, hmax, dist; uniform: same)
 PAPER = {
@@ -60,13 +60,9 @@ def main():
     halted = {}
     for title, halting in tables:
         print(f"### {title}\n")
-        table_header(HEADER)
+        columns = table_header(HEADER)
         summary = []
-        for model in args.models:
-            mesh = dataset(args, model)
-            if not mesh:
-                print(f"| {model} | - | not in the datasets | | | | | | | | | | |")
-                continue
+        for model, mesh in meshes(args, columns):
             pa, pu = PAPER[model]
             if halting is None:
                 a = run(args.quadsimp, mesh, pa[0], args.samples, ["--adaptive"])
@@ -130,10 +126,7 @@ def draws(args):
     table_header("| model | halting counts (the file first) | adaptive RMS e-3: median (range) "
                  "| uniform at the same counts | adaptive lower by, per draw | median | projectability %: min, median "
                  "| regular %: min, median | max valence |")
-    for model in args.models:
-        mesh = dataset(args, model)
-        if not mesh:
-            continue
+    for model, mesh in meshes(args):
         counts, a, u, gains, proj, reg, val = [], [], [], [], [], [], []
         with tempfile.TemporaryDirectory() as tmp:
             for k in range(args.draws):

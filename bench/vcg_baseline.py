@@ -19,7 +19,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from paper_table1 import PAPER as TABLE1, dataset, machine, parse_args, run, table_header  # noqa: E402
+from paper_table1 import PAPER as TABLE1, machine, meshes, parse_args, run, table_header  # noqa: E402
 from paper_tables23 import PAPER as TABLE2  # noqa: E402
 
 MODELS = ["moai", "pensatore", "gargoyle", "bunny", "fertility", "armadillo"]
@@ -78,13 +78,9 @@ def main():
     args.baseline = os.path.join(os.path.dirname(args.quadsimp), "..", "bench", "qs_vcg_baseline")
     print(f"Machine: {machine()}; both simplifiers single-threaded (our fitmaps use both cores). Distances "
           f"sampled with {args.samples} points per surface plus vertices.\n")
-    table_header("| model | mode | target | simplifier | #faces | time s | val max | reg % | homeometry "
+    columns = table_header("| model | mode | target | simplifier | #faces | time s | val max | reg % | homeometry "
                  "| Hausdorff e-3 | RMS e-3 | non-convex / flipped / folded |")
-    for model in args.models:
-        mesh = dataset(args, model)
-        if not mesh:
-            print(f"| {model} | | | not in {args.datasets} | | | | | | | | |")
-            continue
+    for model, mesh in meshes(args, columns):
         for mode, faces in counts(model):
             extra = ["--adaptive"] if mode == "adaptive" else []
             ours = run(args.quadsimp, mesh, faces, args.samples, extra)
