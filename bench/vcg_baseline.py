@@ -3,11 +3,11 @@
 
 DESIGN.md names vcglib's quad_diag_collapse.h as the baseline to beat on every model.
 `build/bench/qs_vcg_baseline` drives it from our cleaned input and quad conversion (see
-its header); both results are then measured by `quadsimp stats`. vcglib runs twice: on
-the file as it is, and scaled to a bounding-box diagonal of 1 (its loop depends on the
-model's absolute size; ours does not). Uniform runs at the
+its header); both results are then measured by `quadsimp stats`. Uniform runs at the
 paper's Table 1 counts, adaptive runs at its Table 2 counts (vcglib's loop fed with our
-fitmaps: its own fitmaps.h no longer compiles against Eigen 3.4).
+fitmaps: its own fitmaps.h no longer compiles against Eigen 3.4). vcglib runs twice: on
+the file as it is, and scaled to a bounding-box diagonal of 1, since its loop depends on
+the model's absolute size (bench/RESULTS.md).
 
     python3 bench/vcg_baseline.py [--quadsimp build/src/quadsimp] [--datasets ../shared/datasets]
                                   [--samples 300000] [--models bunny gargoyle]
@@ -79,7 +79,7 @@ def main():
     print(f"Machine: {machine()}; both simplifiers single-threaded (our fitmaps use both cores). Distances "
           f"sampled with {args.samples} points per surface plus vertices.\n")
     columns = table_header("| model | mode | target | simplifier | #faces | time s | val max | reg % | homeometry "
-                 "| Hausdorff e-3 | RMS e-3 | non-convex / flipped / folded |")
+                           "| Hausdorff e-3 | RMS e-3 | non-convex / flipped / folded |")
     for model, mesh in meshes(args, columns):
         for mode, faces in counts(model):
             extra = ["--adaptive"] if mode == "adaptive" else []
