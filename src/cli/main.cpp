@@ -1,14 +1,13 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include <CLI/CLI.hpp>
-#include <charconv>
 #include <cmath>
 #include <exception>
 #include <iostream>
 #include <limits>
 #include <string>
-#include <system_error>
 
 #include "cli/commands.h"
+#include "quadsimp/util/parse_number.h"
 
 namespace {
 
@@ -18,9 +17,8 @@ CLI::Validator whole_number_from_one() {
   return CLI::Validator(
       [](std::string& s) -> std::string {
         unsigned long long x = 0;
-        const auto r = std::from_chars(s.data(), s.data() + s.size(), x);
         const unsigned long long most = std::numeric_limits<unsigned>::max();
-        if (r.ec != std::errc() || r.ptr != s.data() + s.size() || x < 1 || x > most)
+        if (!qs::parse_number(s, x) || x < 1 || x > most)
           return "'" + s + "' is not a whole number from 1 to " + std::to_string(most);
         return {};
       },
@@ -31,9 +29,7 @@ CLI::Validator number_above_zero() {
   return CLI::Validator(
       [](std::string& s) -> std::string {
         double x = 0;
-        const auto r = std::from_chars(s.data(), s.data() + s.size(), x);
-        if (r.ec != std::errc() || r.ptr != s.data() + s.size() || !(x > 0) || !std::isfinite(x))
-          return "'" + s + "' is not a number above 0";
+        if (!qs::parse_number(s, x) || !(x > 0) || !std::isfinite(x)) return "'" + s + "' is not a number above 0";
         return {};
       },
       "X>0");

@@ -18,8 +18,6 @@
 
 namespace qs {
 
-using detail::parse_number;
-
 MeshFile read_off(const std::string& path) {
   detail::TextLines in(path);
   if (!in.next()) in.ends("before its OFF header");

@@ -123,13 +123,13 @@ class Values {
     pos_ = end;
     if (t == Type::f32) {  // as a float, rounded once, as a binary file would hold it
       float f;
-      if (!detail::parse_number(field, f)) return false;
+      if (!parse_number(field, f)) return false;
       x = double(f);
       return true;
     }
-    if (t == Type::f64) return detail::parse_number(field, x);
+    if (t == Type::f64) return parse_number(field, x);
     long long i;
-    if (!detail::parse_number(field, i)) return false;
+    if (!parse_number(field, i)) return false;
     x = double(i);
     return true;
   }
@@ -172,7 +172,7 @@ Header read_header(const std::string& path, const std::string& file) {
     } else if (f[0] == "element" && f.size() >= 2) {
       Element e;
       e.name = f[1];
-      if (f.size() != 3 || !detail::parse_number(f[2], e.count) || e.count < 0)
+      if (f.size() != 3 || !parse_number(f[2], e.count) || e.count < 0)
         unreadable(path, "element " + detail::quoted(e.name) + " has no count");
       h.elements.push_back(e);
     } else if (f[0] == "property" && !h.elements.empty()) {

@@ -1,31 +1,22 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Lines of a text mesh file (OBJ, OFF, a PLY header) split into fields, '#' comments and blank lines
-// skipped, numbered for messages; numbers read from whole fields ("0.5x" is not a
-// number, where atof takes it for 0.5).
+// skipped, numbered for messages; numbers read from whole fields (parse_number()).
 #pragma once
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cstdint>
 #include <fstream>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <vector>
 
 #include "quadsimp/util/errors.h"
+#include "quadsimp/util/parse_number.h"
 #include "quadsimp/util/types.h"
 
 namespace qs::detail {
-
-template <class T>
-bool parse_number(std::string_view field, T& x) {
-  if (!field.empty() && field[0] == '+') field.remove_prefix(1);  // from_chars takes no '+', strtod does
-  const auto r = std::from_chars(field.data(), field.data() + field.size(), x);
-  return r.ec == std::errc() && r.ptr == field.data() + field.size();
-}
 
 //! A field of the file quoted for a message: bytes that are not printable ASCII shown
 //! as '?', and at most 40 of them, so that a binary file's bytes stay out of the terminal.
