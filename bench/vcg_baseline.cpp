@@ -49,8 +49,6 @@ bool InterpolationParameters(const Face& t, const Point3f& n, const Point3f& p, 
 
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/io/load_input.h"
-#include "quadsimp/mesh/quad_geometry.h"
-#include "quadsimp/reference/reference_surface.h"
 
 namespace {
 
@@ -153,12 +151,11 @@ void fill_quads(QuadPolyMesh& pm, const qs::QuadMesh& q, double scale) {
   }
 }
 
-// What keeps the result from being a valid pure quad mesh (`quadsimp stats` refuses it
-// at the first one); counted here so that a broken result is measured, not just refused.
+// What else keeps the result from being a valid pure quad mesh besides non-manifold
+// vertices (split_fans() mends those): `quadsimp stats` refuses such a result at the first
+// one, so the driver counts them all.
 struct Defects {
   int not_quads = 0, repeated_vertex = 0, edges_over_two_faces = 0, edges_same_direction = 0;
-  int nonmanifold_vertices = 0;  //!< split in the file written (see split_fans())
-  int flipped = 0;  //!< as `quadsimp stats` counts them: normal against M0's nearest the centre
 };
 
 // The result with each vertex whose faces form more than one fan (cones touching at a
@@ -230,7 +227,7 @@ void write_off(const std::string& path, const SplitMesh& m, double scale) {
   if (!out) throw std::runtime_error("cannot write " + path);
 }
 
-Defects count_defects(QuadPolyMesh& pm, const qs::ReferenceSurface& m0, double scale) {
+Defects count_defects(QuadPolyMesh& pm) {
   Defects d;
   std::map<std::pair<int, int>, int> directed;
   for (PFace& f : pm.face) {
@@ -243,12 +240,6 @@ Defects count_defects(QuadPolyMesh& pm, const qs::ReferenceSurface& m0, double s
       ++directed[{a, b}];
     }
     d.repeated_vertex += int(corners.size()) != f.VN();
-    if (f.VN() == 4) {
-      qs::Vec3 p[4];
-      for (int k = 0; k < 4; ++k) p[k] = qs::Vec3(f.cV(k)->cP()[0], f.cV(k)->cP()[1], f.cV(k)->cP()[2]) / scale;
-      const qs::SurfacePoint c = m0.closest_to_quad_centre(p);
-      d.flipped += c.found() && m0.normal_at(c).dot(qs::quad_normal(p[0], p[1], p[2], p[3])) < 0;
-    }
   }
   std::map<std::pair<int, int>, int> undirected;
   for (const auto& [e, n] : directed) {
@@ -334,13 +325,12 @@ int main(int argc, char** argv) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const SplitMesh result = split_fans(pm);
     write_off(out, result, scale);
-    Defects d = count_defects(pm, qs::ReferenceSurface(input.reference), scale);
-    d.nonmanifold_vertices = result.split_vertices;
+    const Defects d = count_defects(pm);
     std::printf("{\"faces\": %d, \"seconds\": %.3f, \"setup_seconds\": %.3f, \"halfedges_consistent\": [%s, %s], "
                 "\"not_quads\": %d, \"repeated_vertex\": %d, \"edges_over_two_faces\": %d, "
-                "\"edges_same_direction\": %d, \"nonmanifold_vertices\": %d, \"flipped\": %d}\n",
+                "\"edges_same_direction\": %d, \"nonmanifold_vertices\": %d}\n",
                 pm.fn, total_s, setup_s, consistent_before ? "true" : "false", consistent ? "true" : "false",
-                d.not_quads, d.repeated_vertex, d.edges_over_two_faces, d.edges_same_direction, d.nonmanifold_vertices, d.flipped);
+                d.not_quads, d.repeated_vertex, d.edges_over_two_faces, d.edges_same_direction, result.split_vertices);
   } catch (const std::exception& e) {
     std::cerr << in << ": " << e.what() << '\n';
     return 1;

@@ -55,6 +55,7 @@ def vcglib_run(args, mesh, mode, faces, extra=()):
 def defects(r):
     """What made vcglib's result not a manifold pure quad mesh (none for ours)."""
     found = [(r.get("nonmanifold_vertices", 0), "non-manifold vertices (split to measure)"),
+             (r.get("not_quads", 0), "faces that are not quads"),
              (r.get("repeated_vertex", 0), "quads repeating a vertex"),
              (r.get("edges_over_two_faces", 0), "edges in 3+ quads"),
              (r.get("edges_same_direction", 0), "edges twice in one direction")]
@@ -67,7 +68,7 @@ def cells(r):
         return f"failed: {r['failed']} |" + " |" * 7
     if "stats_refused" in r:
         return (f"{r['faces']} | {r['seconds']:.2f} | not measured: `quadsimp stats` refuses it ({r['stats_refused']}) "
-                f"| | | | | - / {r['flipped']} / -{defects(r)} |")
+                f"| | | | | -{defects(r)} |")
     return (f"{r['faces']} | {r['seconds']:.2f} | {r['max_valence']} | {r['regular_percent']:.1f} "
             f"| {r['homeometry_min']:.2f}-{r['homeometry_max']:.2f} | {r['hausdorff_e3']:.2f} | {r['rms_e3']:.2f} "
             f"| {r['nonconvex_faces']} / {r['flipped_faces']} / {r['folded_faces']}{defects(r)} |")

@@ -36,7 +36,8 @@ import json, sys
 r, faces = json.loads(sys.argv[1]), int(sys.argv[2])
 assert r["halfedges_consistent"] == [True, True], r
 assert r["faces"] == faces, r
-assert r["repeated_vertex"] == 0 and r["edges_over_two_faces"] == 0 and r["edges_same_direction"] == 0, r
+assert r["not_quads"] == 0 and r["repeated_vertex"] == 0, r
+assert r["edges_over_two_faces"] == 0 and r["edges_same_direction"] == 0, r
 EOF
   local stats
   stats=$("$quadsimp" stats "$mesh" "$tmp/out.off" --json --samples 2000)
