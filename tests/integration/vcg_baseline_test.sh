@@ -2,9 +2,10 @@
 # quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 # The vcglib baseline driver (bench/vcg_baseline.cpp) on an open grid and a closed torus:
 # vcglib's half-edges must pass its own check before and after, the count must be
-# reached, and `quadsimp stats` must measure the result. On the grid this fails when the
-# driver builds the half-edges without face-face adjacency (the grid contracted to a
-# point), which is how bench/RESULTS.md's comparison could go wrong unseen.
+# reached, no vertex may be split as non-manifold, and `quadsimp stats` must measure the
+# result. On the grid this fails when the driver builds the half-edges without
+# face-face adjacency (the grid contracted to a point), and everywhere when it splits
+# vertices whose faces form one fan: either would skew bench/RESULTS.md unseen.
 #   vcg_baseline_test.sh QS_VCG_BASELINE QUADSIMP PROJECT_DIR
 set -euo pipefail
 baseline=$1 quadsimp=$2 project=$3
@@ -37,6 +38,7 @@ r, faces = json.loads(sys.argv[1]), int(sys.argv[2])
 assert r["halfedges_consistent"] == [True, True], r
 assert r["faces"] == faces, r
 assert r["not_quads"] == 0 and r["repeated_vertex"] == 0, r
+assert r["nonmanifold_vertices"] == 0, r  # no vertex split on these: each vertex's faces form one fan
 assert r["edges_over_two_faces"] == 0 and r["edges_same_direction"] == 0, r
 EOF
   local stats
