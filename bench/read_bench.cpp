@@ -1,6 +1,6 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 // Reading a 1.1-million-triangle mesh (the glmark2 bunny with every triangle split into
-// four, twice) from binary PLY (vcglib's reader), OBJ and OFF (ours), warm file cache.
+// four, twice) from binary PLY, OBJ and OFF, all three by our readers, warm file cache.
 #include <benchmark/benchmark.h>
 
 #include <cstdio>

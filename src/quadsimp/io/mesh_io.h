@@ -11,7 +11,8 @@
 
 namespace qs {
 
-//! Reads PLY (ascii/binary) or STL through vcglib's importers, or OBJ or OFF. Quads come
+//! Reads PLY (ASCII or binary), OBJ or OFF with our readers, STL and old Stanford PLY
+//! files (triangle strips, range grids) through vcglib's importers. Quads come
 //! back as quads whether the file has quad polygons or MeshLab's triangle pairs with
 //! faux-edge face flags (PLY saved with per-face flags); other polygons as triangles.
 //! \throw InvalidInput "PATH: reason" for unreadable, truncated or unknown files.
