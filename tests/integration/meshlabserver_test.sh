@@ -7,6 +7,7 @@
 #  - the plugin and the CLI give the same result for the same input and parameters, in
 #    uniform mode and in adaptive mode with automatic halting (at two halting shares);
 #  - a point cloud makes the filter fail with our message, without crashing MeshLab;
+#  - a fin on an edge (three triangles on it) is removed, and MeshLab's log says so;
 #  - the quads come out as polygonal layers that MeshLab's polygon filters accept;
 #  - MeshLab's own quads (its smart triangle pairing) are simplified.
 # Usage: meshlabserver_test.sh PLUGIN.so QUADSIMP_CLI REPO_DIR DATASETS_DIR
@@ -158,9 +159,18 @@ expect_refusal() {  # name message (the input is $work/NAME.ply)
 vertices='ply\nformat ascii 1.0\nelement vertex %s\nproperty float x\nproperty float y\nproperty float z\n'
 printf "${vertices}end_header\n0 0 0\n1 0 0\n0 1 0\n" 3 >"$work/cloud.ply"
 expect_refusal cloud "point cloud"
-# Three triangles on one edge.
-printf "${vertices}element face 3\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n" 5 >"$work/fin.ply"
-expect_refusal fin "non-manifold edge"
+# Three triangles on one edge: the smallest (the fin) is removed, the log says so, and the
+# rest becomes one quad.
+printf "${vertices}element face 3\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 0.5\n3 0 1 2\n3 0 1 4\n3 1 0 3\n" 5 >"$work/fin.ply"
+if server -i "$work/fin.ply" -o "$work/fin_out.ply" -m ff -s "$script"; then
+  grep -q "1 faces removed at edges shared by more than two triangles" "$work/server.log" ||
+    { fail "fin: the repair is not in MeshLab's log"; cat "$work/server.log"; }
+  faces=$("$cli" stats "$work/fin.ply" "$work/fin_out.ply" --json --samples 1000 | python3 -c "import json,sys; print(json.load(sys.stdin)['faces'])") ||
+    fail "fin: the result is not a valid pure quad mesh"
+  [ "${faces:-0}" = 1 ] && echo "ok: fin removed, 1 quad" || fail "fin: ${faces:-no} quads, not 1"
+else
+  fail "meshlabserver failed on the fin"; cat "$work/server.log"
+fi
 
 # 5. The other three filters, chained on the torus: convert (in place), fitmaps, quality.
 cat >"$work/others.mlx" <<'MLX'

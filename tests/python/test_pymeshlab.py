@@ -253,20 +253,32 @@ def test_bad_input_raises_a_python_exception():
     assert "halting share" in str(e.value)
 
 
-def test_a_non_manifold_edge_is_refused_with_the_repair_to_run():
-    # Three triangles on one edge, from arrays: pymeshlab gives the layer no label, so the
-    # message names it by its id.
-    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]], dtype=float)
+def test_a_fin_on_an_edge_is_removed_and_the_surface_kept_whole():
+    # A 10 x 10 grid with a fin on one inside edge (three triangles on it), larger than
+    # the grid's triangles. Our filter removes the fin: the result is the grid's own.
+    grid = open_grid(10)
+    v, f = grid.vertex_matrix(), grid.face_matrix()
+    a, b = f[57][0], f[57][1]
+    tip = 0.5 * (v[a] + v[b]) + [0, 0, 0.3]
+    fin = pymeshlab.Mesh(vertex_matrix=np.vstack([v, tip]), face_matrix=np.vstack([f, [[a, b, len(v)]]]))
+    results = []
+    for mesh in (fin, grid):
+        ms = pymeshlab.MeshSet()
+        ms.add_mesh(mesh)
+        ms.meshing_quad_mesh_simplification(targetfacenum=20)
+        out = ms.current_mesh()
+        assert is_pure_quad(out)
+        results.append((out.vertex_matrix().copy(), out.face_matrix().copy()))
+    assert len(results[0][1]) == 40  # 20 quads, as 40 triangles
+    assert np.array_equal(results[0][0], results[1][0])
+    assert np.array_equal(results[0][1], results[1][1])
+    # Why not MeshLab's own repair (remove the smallest faces): it takes a grid triangle,
+    # which is smaller than the fin, and leaves the fin hinged on the hole's edge.
     ms = pymeshlab.MeshSet()
-    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, face_matrix=np.array([[0, 1, 2], [1, 0, 3], [0, 1, 4]])))
-    with pytest.raises(pymeshlab.PyMeshLabException) as e:
-        ms.meshing_quad_mesh_simplification(targetfacenum=1)
-    assert "layer 0: edge 0-1 is shared by more than two triangles" in str(e.value)
-    # The filter the message names is the one that mends it.
-    assert "Repair non Manifold Edges" in str(e.value)
+    ms.add_mesh(fin)
     ms.meshing_repair_non_manifold_edges()
-    ms.meshing_quad_mesh_simplification(targetfacenum=1)
-    assert is_pure_quad(ms.current_mesh())
+    assert (ms.current_mesh().face_matrix() == len(v)).any()  # the fin's tip is still used
+    assert ms.current_mesh().face_number() == len(f)
 
 
 def plugin_and_cli(bunny_path, cli, tmp_path, filter_args, cli_args):

@@ -177,6 +177,100 @@ TEST(Clean, splits_nonmanifold_vertex) {
   EXPECT_EQ(t.n_vertices(), 6u);
 }
 
+namespace {
+// Every edge has at most two triangles, walked in opposite directions.
+void expect_edge_manifold_and_oriented(const TriMesh& t) {
+  std::set<std::pair<Index, Index>> walked;
+  for (const auto& f : t.faces)
+    for (int k = 0; k < 3; ++k) EXPECT_TRUE(walked.insert({f[k], f[(k + 1) % 3]}).second) << f[k] << "-" << f[(k + 1) % 3];
+}
+
+// Triangles as sets of positions, to compare meshes whose vertices were renumbered.
+std::set<std::set<std::array<double, 3>>> triangle_set(const TriMesh& t) {
+  std::set<std::set<std::array<double, 3>>> out;
+  for (const auto& f : t.faces) {
+    std::set<std::array<double, 3>> corners;
+    for (Index v : f) corners.insert({t.positions[v].x(), t.positions[v].y(), t.positions[v].z()});
+    out.insert(corners);
+  }
+  return out;
+}
+}  // namespace
+
+TEST(Clean, keeps_the_straightest_pair_of_faces_at_a_nonmanifold_edge) {
+  // Two triangles of a plane on edge 0-1, and a fin standing on the same edge, larger
+  // than either of them (removing the smallest would cut the plane).
+  TriMesh fin;
+  fin.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0.5, 0, 3}};
+  fin.faces = {{0, 1, 2}, {0, 1, 4}, {1, 0, 3}};
+  std::vector<std::string> notes;
+  TriMesh t = fin;
+  const CleanReport r = clean(t, "in.ply", [&](std::string_view m) { notes.emplace_back(m); });
+  EXPECT_EQ(r.removed_nonmanifold_faces, 1u);
+  EXPECT_EQ(r.removed_unreferenced_vertices, 1u);  // the fin's tip
+  EXPECT_TRUE(r.changed_faces());
+  TriMesh plane = fin;
+  plane.faces.erase(plane.faces.begin() + 1);
+  EXPECT_EQ(triangle_set(t), triangle_set(plane));  // the plane is whole
+  expect_edge_manifold_and_oriented(t);
+  const bool noted = std::any_of(notes.begin(), notes.end(), [](const std::string& n) {
+    return n.rfind("in.ply: 1 faces removed at edges shared by more than two triangles", 0) == 0;
+  });
+  EXPECT_TRUE(noted);
+
+  // Five on the edge: three fins, one of them leaning over to 30 degrees off the plane,
+  // all go.
+  TriMesh fins = fin;
+  fins.positions.push_back({0.2, 0.3, 0.2});
+  fins.positions.push_back({0.7, std::cos(M_PI / 6), std::sin(M_PI / 6)});
+  fins.faces.push_back({0, 1, 5});
+  fins.faces.push_back({1, 0, 6});
+  t = fins;
+  EXPECT_EQ(clean(t).removed_nonmanifold_faces, 3u);
+  EXPECT_EQ(triangle_set(t), triangle_set(plane));
+  expect_edge_manifold_and_oriented(t);
+
+  // Three sheets of a book along its spine: the two pages nearest to one flat sheet
+  // (170 degrees apart) stay, whichever comes first in the file.
+  for (int first = 0; first < 3; ++first) {
+    TriMesh book;
+    book.positions = {{0, 0, 0}, {1, 0, 0}};
+    for (double deg : {0.0, 170.0, 250.0}) book.positions.push_back({0.5, std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180)});
+    for (int k = 0; k < 3; ++k) book.faces.push_back({0, 1, Index(2 + (first + k) % 3)});
+    const CleanReport rb = clean(book);
+    EXPECT_EQ(rb.removed_nonmanifold_faces, 1u);
+    ASSERT_EQ(book.n_faces(), 2u);
+    for (const auto& f : book.faces)
+      for (Index v : f) EXPECT_GT(book.positions[v].z(), -0.5) << "the page at 250 degrees goes";
+  }
+}
+
+TEST(Clean, a_flap_on_a_closed_surface_leaves_the_surface_closed) {
+  // A fan of three small triangles hinged on one edge of a sphere: its first triangle
+  // makes the edge non-manifold and goes; the other two then hang from a single vertex
+  // and are split off there, as any other non-manifold vertex.
+  const TriMesh sphere = tri_sphere(8, 10);
+  TriMesh t = sphere;
+  const auto e = t.faces[40];
+  const Vec3 mid = 0.5 * (t.positions[e[0]] + t.positions[e[1]]);
+  const Index tip = t.n_vertices();
+  t.positions.push_back(mid * 1.05);
+  t.positions.push_back(mid * 1.08 + Vec3(0.01, 0, 0));
+  t.positions.push_back(mid * 1.08 - Vec3(0, 0.01, 0));
+  t.faces.push_back({e[0], e[1], tip});
+  t.faces.push_back({e[1], tip + 1, tip});
+  t.faces.push_back({tip, tip + 1, tip + 2});
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.removed_nonmanifold_faces, 1u);
+  EXPECT_EQ(r.split_nonmanifold_vertices, 1u);
+  expect_edge_manifold_and_oriented(t);
+  std::vector<Index> c;
+  EXPECT_EQ(face_components(triangle_adjacency(t), c), 2u);  // the sphere, closed, and the flap's rest
+  Index on_sphere = 0;
+  for (Index f = 0; f < t.n_faces(); ++f) on_sphere += c[f] == c[0];
+  EXPECT_EQ(on_sphere, sphere.n_faces());
+}
+
 TEST(Clean, refuses_unusable_input_with_one_sentence) {
   TriMesh empty;
   EXPECT_NE(message_of(empty).find("empty"), std::string::npos);
@@ -197,21 +291,19 @@ TEST(Clean, refuses_unusable_input_with_one_sentence) {
   range.faces[2][1] = 99;
   EXPECT_NE(message_of(range).find("out of range"), std::string::npos);
 
-  TriMesh fin;  // three triangles on one edge
-  fin.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
-  fin.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
-  EXPECT_NE(message_of(fin).find("non-manifold edge"), std::string::npos);
-  TriMesh fins = fin;  // four: two pairs, each of which looks manifold on its own
-  fins.positions.push_back({0, 0, -1});
-  fins.faces.push_back({1, 0, 5});
-  EXPECT_NE(message_of(fins).find("non-manifold edge"), std::string::npos);
+  TriMesh moebius;  // a strip of four quads closed with a half twist
+  for (int i = 0; i < 4; ++i) moebius.positions.push_back({double(i), 0, 0}), moebius.positions.push_back({double(i), 1, 0});
+  for (Index i = 0; i < 3; ++i)
+    moebius.faces.push_back({2 * i, 2 * i + 2, 2 * i + 1}), moebius.faces.push_back({2 * i + 1, 2 * i + 2, 2 * i + 3});
+  moebius.faces.push_back({6, 1, 7}), moebius.faces.push_back({7, 1, 0});  // the last quad joins 6-7 to 1-0
+  EXPECT_NE(message_of(moebius).find("not orientable"), std::string::npos);
 
   TriMesh flat;
   flat.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
   flat.faces = {{0, 1, 2}};
   EXPECT_NE(message_of(flat).find("degenerate"), std::string::npos);
 
-  for (const std::string& m : {message_of(empty), message_of(fin)}) {
+  for (const std::string& m : {message_of(empty), message_of(moebius)}) {
     EXPECT_EQ(m.rfind("in.ply: ", 0), 0u) << m;  // names the file first
     EXPECT_EQ(m.find('\n'), std::string::npos);
   }

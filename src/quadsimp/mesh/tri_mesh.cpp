@@ -216,6 +216,53 @@ void remove_degenerate_and_duplicate_faces(TriMesh& m, CleanReport& r) {
     else ++r.removed_duplicate_faces;
 }
 
+// At an edge with more than two triangles, the two across which the surface runs on
+// straightest are kept and the others removed: the pair whose wings (the directions from
+// the edge to their third corners, across it) are the most opposite. A fin or a flap
+// standing on a surface goes, whatever its size, and the surface stays whole. MeshLab's
+// "Repair non Manifold Edges" removes the smallest triangles instead, which takes the
+// surface's own triangle where a fin is larger than it and leaves a hole with the fin
+// hinged on its edge (the bunny with 300 random fins: folded quads in the result).
+// Splitting the edge's vertices, MeshLab's other method, keeps every triangle but cuts
+// the surface open along the edge, and its sides would then be simplified apart.
+void remove_faces_at_nonmanifold_edges(TriMesh& m, CleanReport& r) {
+  const Index nf = m.n_faces();
+  std::vector<std::pair<std::uint64_t, Index>> corners(3 * std::size_t(nf));  // (edge key, corner)
+  for (Index f = 0; f < nf; ++f)
+    for (Index k = 0; k < 3; ++k) {
+      const std::uint64_t a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
+      corners[3 * f + k] = {std::min(a, b) << 32 | std::max(a, b), 3 * f + k};
+    }
+  std::sort(corners.begin(), corners.end());
+  std::vector<char> drop(nf, 0);
+  std::vector<std::pair<Index, Vec3>> wings;  // (face, unit wing) of the faces still on the edge
+  for (std::size_t i = 0, j; i < corners.size(); i = j) {
+    for (j = i + 1; j < corners.size() && corners[j].first == corners[i].first; ++j) {
+    }
+    if (j - i < 3) continue;
+    const Vec3& a = m.positions[Index(corners[i].first >> 32)];
+    const Vec3 along = (m.positions[Index(corners[i].first & 0xffffffffu)] - a).normalized();
+    wings.clear();
+    for (std::size_t c = i; c < j; ++c) {
+      const Index f = corners[c].second / 3;
+      if (drop[f]) continue;
+      const Vec3 to_third = m.positions[m.faces[f][(corners[c].second % 3 + 2) % 3]] - a;
+      wings.push_back({f, (to_third - to_third.dot(along) * along).normalized()});
+    }
+    if (wings.size() < 3) continue;
+    std::size_t keep0 = 0, keep1 = 1;
+    for (std::size_t p = 0; p < wings.size(); ++p)
+      for (std::size_t q = p + 1; q < wings.size(); ++q)
+        if (wings[p].second.dot(wings[q].second) < wings[keep0].second.dot(wings[keep1].second)) keep0 = p, keep1 = q;
+    for (std::size_t p = 0; p < wings.size(); ++p)
+      if (p != keep0 && p != keep1) drop[wings[p].first] = 1, ++r.removed_nonmanifold_faces;
+  }
+  Index kept = 0;
+  for (Index f = 0; f < nf; ++f)
+    if (!drop[f]) m.faces[kept++] = m.faces[f];
+  m.faces.resize(kept);
+}
+
 // Flips faces so that every manifold edge is walked in opposite directions by its
 // two faces. Per component, the orientation kept is the one most faces already had.
 void orient(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, CleanReport& r, const std::string& src) {
@@ -428,16 +475,20 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
   remove_degenerate_and_duplicate_faces(m, r);
   if (m.faces.empty()) throw InvalidInput(src + ": every face is degenerate (zero area)");
   {
-    std::array<Index, 2> bad;
-    auto adj = adjacency_from(m, corners_around(m), &bad);
+    // adjacency_from() finds a non-manifold edge as it goes; the repair's sort of all
+    // edges runs only for a mesh that has one.
+    const auto manifold_adjacency = [&] {
+      std::array<Index, 2> bad;
+      auto adj = adjacency_from(m, corners_around(m), &bad);
+      if (bad[0] == kNone) return adj;
+      remove_faces_at_nonmanifold_edges(m, r);
+      return adjacency_from(m, corners_around(m));
+    };
+    auto adj = manifold_adjacency();
     if (merge_close_border_vertices(m, adj, r)) {
       remove_degenerate_and_duplicate_faces(m, r);
-      adj = adjacency_from(m, corners_around(m), &bad);
+      adj = manifold_adjacency();
     }
-    if (bad[0] != kNone)
-      throw InvalidInput(src + ": edge " + std::to_string(bad[0]) + "-" + std::to_string(bad[1]) +
-                         " is shared by more than two triangles (non-manifold edge; MeshLab's Cleaning and "
-                         "Repairing > Repair non Manifold Edges removes the extra faces)");
     orient(m, adj, r, src);
   }
   split_nonmanifold_vertices(m, r);
@@ -453,6 +504,9 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
     note(r.merged_close_vertices, "vertices merged with a border vertex closer than 1e-6 of the bounding-box diagonal");
     note(r.removed_degenerate_faces, "degenerate faces removed");
     note(r.removed_duplicate_faces, "duplicate faces removed");
+    note(r.removed_nonmanifold_faces,
+         "faces removed at edges shared by more than two triangles (non-manifold edges; at each, the two "
+         "across which the surface runs on straightest are kept)");
     note(r.removed_unreferenced_vertices, "unreferenced vertices removed");
     note(r.split_nonmanifold_vertices, "non-manifold vertices split");
     note(r.flipped_faces, "faces re-oriented to match their neighbours");

@@ -29,6 +29,7 @@ struct CleanReport {
   Index merged_close_vertices = 0;  //!< border vertices within 1e-6 of the bbox diagonal of another
   Index removed_degenerate_faces = 0;
   Index removed_duplicate_faces = 0;
+  Index removed_nonmanifold_faces = 0;  //!< at edges with more than two triangles, all but the straightest pair
   Index removed_unreferenced_vertices = 0;
   Index split_nonmanifold_vertices = 0;
   Index flipped_faces = 0;  //!< faces re-oriented to agree with their component
@@ -36,7 +37,7 @@ struct CleanReport {
   //! turned); dropping unreferenced vertices does not count.
   bool changed_faces() const {
     return merged_duplicate_vertices + merged_close_vertices + removed_degenerate_faces + removed_duplicate_faces +
-               split_nonmanifold_vertices + flipped_faces > 0;
+               removed_nonmanifold_faces + split_nonmanifold_vertices + flipped_faces > 0;
   }
 };
 
@@ -44,12 +45,12 @@ struct CleanReport {
 //!
 //! Repairs (each logged): exact-duplicate vertices merged, border vertices closer than
 //! 1e-6 of the bounding-box diagonal merged, faces with a repeated
-//! vertex or zero area removed, duplicate faces removed, unreferenced vertices
-//! removed, non-manifold vertices split (one copy per fan), faces re-oriented
-//! consistently within each component.
+//! vertex or zero area removed, duplicate faces removed, at an edge with more than
+//! two triangles all removed but the two across which the surface runs on straightest,
+//! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
+//! re-oriented consistently within each component.
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
-//!        out-of-range indices, an edge with more than two faces, a non-orientable
-//!        component. `what` is one sentence; `source` (a file name) prefixes it.
+//!        out-of-range indices, a non-orientable component. `what` is one sentence; `source` (a file name) prefixes it.
 CleanReport clean(TriMesh& mesh, const std::string& source = "mesh", const LogFn& log = {});
 
 //! For each position, the lowest index of the positions equal to it (itself if none
