@@ -50,7 +50,8 @@ struct CleanReport {
 //! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
 //! re-oriented consistently within each component.
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
-//!        out-of-range indices, a non-orientable component. `what` is one sentence; `source` (a file name) prefixes it.
+//!        out-of-range indices, a non-orientable component. `what` is one sentence;
+//!        `source` (a file name) prefixes it.
 CleanReport clean(TriMesh& mesh, const std::string& source = "mesh", const LogFn& log = {});
 
 //! For each position, the lowest index of the positions equal to it (itself if none
