@@ -160,7 +160,12 @@ TEST_F(MeshIo, quads_from_polygons_and_from_faux_flags) {
   const std::string obj = write("q.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   const std::string ply = write("q.ply",
       ply_header(4, 2, "property int flags\n") + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 1048576\n3 0 2 3 262144\n");
-  for (const auto& p : {obj, ply}) {
+  // A quad polygon whose flags mark edges faux: the bits name a triangle's edges, so they
+  // are not applied to a polygon's fan (on its first triangle they made two faux edges,
+  // and the file came back as triangles).
+  const std::string flagged = write("f.ply",
+      ply_header(4, 1, "property int flags\n") + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3 262144\n");
+  for (const auto& p : {obj, ply, flagged}) {
     SCOPED_TRACE(p);
     const MeshFile f = read_mesh(p);
     ASSERT_TRUE(f.is_pure_quad());

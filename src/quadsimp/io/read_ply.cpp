@@ -285,8 +285,9 @@ std::optional<MeshFile> read_ply(const std::string& path) {
   faux.reserve(corners.size());
   for (std::size_t i = 0; i + 1 < polygon_start.size(); ++i) {
     const std::size_t first = faux.size();
-    detail::fan(corners.data() + polygon_start[i], polygon_start[i + 1] - polygon_start[i], triangles, faux);
-    faux[first] |= flag_faux[i];
+    const std::size_t n = polygon_start[i + 1] - polygon_start[i];
+    detail::fan(corners.data() + polygon_start[i], n, triangles, faux);
+    if (n == 3) faux[first] |= flag_faux[i];  // the bits name a triangle's edges
   }
   return pair_faux_triangles(std::move(positions), std::move(triangles), faux);
 }
