@@ -81,9 +81,9 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False):
+def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False, python=False):
     """The options the bench scripts take (--draws: Tables 2 and 3 only; --adaptive-args:
-    the fixed counts only)."""
+    the fixed counts only; --python, a Python with pymeshlab: the MeshLab comparison only)."""
     here = os.path.dirname(os.path.abspath(__file__))
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quadsimp", default=os.path.join(here, "..", "build", "src", "quadsimp"))
@@ -92,6 +92,9 @@ def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False):
     ap.add_argument("--models", nargs="*", default=models)
     if draws:
         ap.add_argument("--draws", type=int, default=draws, help="automatic halting: the file and re-rounded copies")
+    if python:
+        ap.add_argument("--python", default=os.path.join(here, "..", ".venv", "bin", "python"),
+                        help="a Python with pymeshlab (scripts/setup.sh makes .venv)")
     if adaptive_args:
         ap.add_argument("--adaptive-args", default="", type=str.split,
                         help='more options for the adaptive runs, e.g. --adaptive-args="--m-factor 0.8"')
