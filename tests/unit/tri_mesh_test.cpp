@@ -182,7 +182,8 @@ namespace {
 void expect_edge_manifold_and_oriented(const TriMesh& t) {
   std::set<std::pair<Index, Index>> walked;
   for (const auto& f : t.faces)
-    for (int k = 0; k < 3; ++k) EXPECT_TRUE(walked.insert({f[k], f[(k + 1) % 3]}).second) << f[k] << "-" << f[(k + 1) % 3];
+    for (int k = 0; k < 3; ++k)
+      EXPECT_TRUE(walked.insert({f[k], f[(k + 1) % 3]}).second) << f[k] << "-" << f[(k + 1) % 3];
 }
 
 // Triangles as sets of positions, to compare meshes whose vertices were renumbered.
@@ -235,7 +236,8 @@ TEST(Clean, keeps_the_straightest_pair_of_faces_at_a_nonmanifold_edge) {
   for (int first = 0; first < 3; ++first) {
     TriMesh book;
     book.positions = {{0, 0, 0}, {1, 0, 0}};
-    for (double deg : {0.0, 170.0, 250.0}) book.positions.push_back({0.5, std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180)});
+    for (double deg : {0.0, 170.0, 250.0})
+      book.positions.push_back({0.5, std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180)});
     for (int k = 0; k < 3; ++k) book.faces.push_back({0, 1, Index(2 + (first + k) % 3)});
     const CleanReport rb = clean(book);
     EXPECT_EQ(rb.removed_nonmanifold_faces, 1u);
@@ -292,7 +294,8 @@ TEST(Clean, refuses_unusable_input_with_one_sentence) {
   EXPECT_NE(message_of(range).find("out of range"), std::string::npos);
 
   TriMesh moebius;  // a strip of four quads closed with a half twist
-  for (int i = 0; i < 4; ++i) moebius.positions.push_back({double(i), 0, 0}), moebius.positions.push_back({double(i), 1, 0});
+  for (int i = 0; i < 4; ++i)
+    moebius.positions.push_back({double(i), 0, 0}), moebius.positions.push_back({double(i), 1, 0});
   for (Index i = 0; i < 3; ++i)
     moebius.faces.push_back({2 * i, 2 * i + 2, 2 * i + 1}), moebius.faces.push_back({2 * i + 1, 2 * i + 2, 2 * i + 3});
   moebius.faces.push_back({6, 1, 7}), moebius.faces.push_back({7, 1, 0});  // the last quad joins 6-7 to 1-0
