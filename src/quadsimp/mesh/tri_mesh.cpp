@@ -225,38 +225,37 @@ void remove_degenerate_and_duplicate_faces(TriMesh& m, CleanReport& r) {
 // hinged on its edge (the bunny with 300 random fins: folded quads in the result).
 // Splitting the edge's vertices, MeshLab's other method, keeps every triangle but cuts
 // the surface open along the edge, and its sides would then be simplified apart.
-void remove_faces_at_nonmanifold_edges(TriMesh& m, CleanReport& r) {
+void remove_faces_at_nonmanifold_edges(TriMesh& m, const CornersAround& around, CleanReport& r) {
   const Index nf = m.n_faces();
-  std::vector<std::pair<std::uint64_t, Index>> corners(3 * std::size_t(nf));  // (edge key, corner)
+  std::vector<char> drop(nf, 0);
+  std::vector<Index> on_edge;                 // the faces on edge a-b, in face order
+  std::vector<std::pair<Index, Vec3>> wings;  // (face, unit wing) of those still there
   for (Index f = 0; f < nf; ++f)
     for (Index k = 0; k < 3; ++k) {
-      const std::uint64_t a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
-      corners[3 * f + k] = {std::min(a, b) << 32 | std::max(a, b), 3 * f + k};
+      const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
+      on_edge.clear();
+      for (Index i = around.start[a]; i < around.start[a + 1]; ++i) {
+        const auto& t = m.faces[around.corner[i] / 3];
+        if (t[0] == b || t[1] == b || t[2] == b) on_edge.push_back(around.corner[i] / 3);
+      }
+      if (on_edge.size() < 3 || on_edge.front() != f) continue;  // each such edge once, from its first face
+      const Vec3 along = (m.positions[b] - m.positions[a]).normalized();
+      wings.clear();
+      for (Index g : on_edge) {
+        if (drop[g]) continue;
+        Index third = 0;
+        while (m.faces[g][third] == a || m.faces[g][third] == b) ++third;
+        const Vec3 to_third = m.positions[m.faces[g][third]] - m.positions[a];
+        wings.push_back({g, (to_third - to_third.dot(along) * along).normalized()});
+      }
+      if (wings.size() < 3) continue;
+      std::size_t keep0 = 0, keep1 = 1;
+      for (std::size_t p = 0; p < wings.size(); ++p)
+        for (std::size_t q = p + 1; q < wings.size(); ++q)
+          if (wings[p].second.dot(wings[q].second) < wings[keep0].second.dot(wings[keep1].second)) keep0 = p, keep1 = q;
+      for (std::size_t p = 0; p < wings.size(); ++p)
+        if (p != keep0 && p != keep1) drop[wings[p].first] = 1, ++r.removed_nonmanifold_faces;
     }
-  std::sort(corners.begin(), corners.end());
-  std::vector<char> drop(nf, 0);
-  std::vector<std::pair<Index, Vec3>> wings;  // (face, unit wing) of the faces still on the edge
-  for (std::size_t i = 0, j; i < corners.size(); i = j) {
-    for (j = i + 1; j < corners.size() && corners[j].first == corners[i].first; ++j) {
-    }
-    if (j - i < 3) continue;
-    const Vec3& a = m.positions[Index(corners[i].first >> 32)];
-    const Vec3 along = (m.positions[Index(corners[i].first & 0xffffffffu)] - a).normalized();
-    wings.clear();
-    for (std::size_t c = i; c < j; ++c) {
-      const Index f = corners[c].second / 3;
-      if (drop[f]) continue;
-      const Vec3 to_third = m.positions[m.faces[f][(corners[c].second % 3 + 2) % 3]] - a;
-      wings.push_back({f, (to_third - to_third.dot(along) * along).normalized()});
-    }
-    if (wings.size() < 3) continue;
-    std::size_t keep0 = 0, keep1 = 1;
-    for (std::size_t p = 0; p < wings.size(); ++p)
-      for (std::size_t q = p + 1; q < wings.size(); ++q)
-        if (wings[p].second.dot(wings[q].second) < wings[keep0].second.dot(wings[keep1].second)) keep0 = p, keep1 = q;
-    for (std::size_t p = 0; p < wings.size(); ++p)
-      if (p != keep0 && p != keep1) drop[wings[p].first] = 1, ++r.removed_nonmanifold_faces;
-  }
   Index kept = 0;
   for (Index f = 0; f < nf; ++f)
     if (!drop[f]) m.faces[kept++] = m.faces[f];
@@ -475,13 +474,14 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
   remove_degenerate_and_duplicate_faces(m, r);
   if (m.faces.empty()) throw InvalidInput(src + ": every face is degenerate (zero area)");
   {
-    // adjacency_from() finds a non-manifold edge as it goes; the repair's sort of all
-    // edges runs only for a mesh that has one.
+    // adjacency_from() finds a non-manifold edge as it goes; the repair runs only for a
+    // mesh that has one, on the same corners.
     const auto manifold_adjacency = [&] {
       bool nonmanifold = false;
-      auto adj = adjacency_from(m, corners_around(m), &nonmanifold);
+      const CornersAround around = corners_around(m);
+      auto adj = adjacency_from(m, around, &nonmanifold);
       if (!nonmanifold) return adj;
-      remove_faces_at_nonmanifold_edges(m, r);
+      remove_faces_at_nonmanifold_edges(m, around, r);
       return adjacency_from(m, corners_around(m));
     };
     auto adj = manifold_adjacency();
