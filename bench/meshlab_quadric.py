@@ -9,14 +9,13 @@ time is decimation and pairing only; ours is the CLI's, loading and conversion i
 
     python3 bench/meshlab_quadric.py [--quadsimp build/src/quadsimp] [--python .venv/bin/python]
 """
-import json
 import os
 import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from paper_table1 import PAPER, machine, meshes, parse_args, run, table_header  # noqa: E402
+from paper_table1 import PAPER, machine, meshes, parse_args, run, stats, table_header  # noqa: E402
 
 MESHLAB = """
 import sys, time, pymeshlab
@@ -39,13 +38,8 @@ def meshlab_run(args, mesh, faces):
         res = subprocess.run([args.python, "-c", MESHLAB, mesh, out, str(faces)], capture_output=True, text=True)
         if res.returncode != 0:
             raise RuntimeError(f"pymeshlab failed on {mesh}: {res.stderr.strip()}")
-        seconds = float(res.stdout.split()[0])
-        res = subprocess.run([args.quadsimp, "stats", mesh, out, "--json", "--samples", str(args.samples)],
-                             capture_output=True, text=True)
-        if res.returncode != 0:  # e.g. triangles left unpaired: not a pure quad mesh
-            return {"not_measured": res.stderr.strip(), "seconds": seconds}
-        r = json.loads(res.stdout)
-        r["seconds"] = seconds
+        r = stats(args.quadsimp, mesh, out, args.samples)
+        r["seconds"] = float(res.stdout.split()[0])
         return r
 
 
@@ -57,10 +51,11 @@ def main():
     ratios = {name: [] for name, _ in OURS}
     for model, mesh in meshes(args, columns):
         for faces, *_ in PAPER[model]:
-            rows = [("MeshLab: quadric + pairing", meshlab_run(args, mesh, faces))]
-            rows += [(name, run(args.quadsimp, mesh, faces, args.samples, extra)) for name, extra in OURS]
-            if rows[1][1]["input_faces"] <= faces:
-                continue
+            ours = [(OURS[0][0], run(args.quadsimp, mesh, faces, args.samples, OURS[0][1]))]
+            if ours[0][1]["input_faces"] <= faces:
+                continue  # above what the input converts to
+            ours += [(name, run(args.quadsimp, mesh, faces, args.samples, extra)) for name, extra in OURS[1:]]
+            rows = [("MeshLab: quadric + pairing", meshlab_run(args, mesh, faces))] + ours
             for name, r in rows:
                 if "not_measured" in r:
                     print(f"| {model} | {faces} | {name} | not measured: {r['not_measured']} |" + " |" * (columns - 4))

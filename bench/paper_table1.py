@@ -43,6 +43,16 @@ def run(quadsimp, mesh, faces, samples, extra=()):
         return json.loads(res.stdout.strip().splitlines()[-1])
 
 
+def stats(quadsimp, mesh, quads, samples):
+    """`quadsimp stats` of another simplifier's result against its input: the JSON, or
+    {"not_measured": why} when stats refuses the file (not a valid pure quad mesh)."""
+    res = subprocess.run([quadsimp, "stats", mesh, quads, "--json", "--samples", str(samples)],
+                         capture_output=True, text=True)
+    if res.returncode != 0:
+        return {"not_measured": res.stderr.strip().split(": ", 2)[-1]}
+    return json.loads(res.stdout)
+
+
 def table_header(header):
     """Prints a markdown table's header row and the rule under it; returns its column count."""
     columns = header.count("|") - 1

@@ -19,7 +19,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from paper_table1 import PAPER as TABLE1, machine, meshes, parse_args, run, table_header  # noqa: E402
+from paper_table1 import PAPER as TABLE1, machine, meshes, parse_args, run, stats, table_header  # noqa: E402
 from paper_tables23 import PAPER as TABLE2  # noqa: E402
 
 MODELS = ["moai", "pensatore", "gargoyle", "bunny", "fertility", "armadillo"]
@@ -43,12 +43,7 @@ def vcglib_run(args, mesh, mode, faces, extra=()):
         if res.returncode != 0:
             return {"failed": (res.stderr.strip().splitlines() or [f"exit {res.returncode}"])[-1]}
         r = json.loads(res.stdout.strip().splitlines()[-1])
-        st = subprocess.run([args.quadsimp, "stats", mesh, out, "--json", "--samples", str(args.samples)],
-                            capture_output=True, text=True)
-        if st.returncode == 0:
-            r.update({k: v for k, v in json.loads(st.stdout).items() if k != "faces"})
-        else:
-            r["stats_refused"] = st.stderr.strip().split(": ", 2)[-1]
+        r.update({k: v for k, v in stats(args.quadsimp, mesh, out, args.samples).items() if k != "faces"})
         return r
 
 
@@ -66,8 +61,8 @@ def defects(r):
 def cells(r):
     if "failed" in r:
         return f"failed: {r['failed']} |" + " |" * 7
-    if "stats_refused" in r:
-        return (f"{r['faces']} | {r['seconds']:.2f} | not measured: `quadsimp stats` refuses it ({r['stats_refused']}) "
+    if "not_measured" in r:
+        return (f"{r['faces']} | {r['seconds']:.2f} | not measured: `quadsimp stats` refuses it ({r['not_measured']}) "
                 f"| | | | | -{defects(r)} |")
     return (f"{r['faces']} | {r['seconds']:.2f} | {r['max_valence']} | {r['regular_percent']:.1f} "
             f"| {r['homeometry_min']:.2f}-{r['homeometry_max']:.2f} | {r['hausdorff_e3']:.2f} | {r['rms_e3']:.2f} "
