@@ -17,7 +17,6 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <queue>
 #include <set>
 #include <string>
 #include <vector>
