@@ -168,9 +168,10 @@ TEST_F(Cli, fit_to_input_lowers_the_distance) {
 }
 
 TEST_F(Cli, a_fin_on_an_edge_is_removed_and_reported) {
-  // Three triangles on edge 1-2 (the OBJ's numbering): the smallest, the fin, goes.
+  // Three triangles on edge 1-2 (the OBJ's numbering): the fin goes, though it is the
+  // largest, and the plane's two triangles stay.
   const std::string in =
-      write("fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 0.5\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
+      write("fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0.5 0 3\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
   const CliRun r = run("convert " + in + " " + p("quad.obj"));
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("fin.obj: 1 faces removed at edges shared by more than two triangles"), std::string::npos)
