@@ -186,6 +186,10 @@ TEST_F(Cli, bad_input_exits_1_and_writes_nothing) {
       write("cloud.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
                          "property float z\nend_header\n0 0 0\n1 0 0\n"),
       write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
+      // A strip of four quads closed with a half twist: the refusal a fin had before fins
+      // were repaired.
+      write("moebius.obj", "v 0 0 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 2 0 0\nv 2 1 0\nv 3 0 0\nv 3 1 0\n"
+                           "f 1 3 2\nf 2 3 4\nf 3 5 4\nf 4 5 6\nf 5 7 6\nf 6 7 8\nf 7 2 8\nf 8 2 1\n"),
       write("empty.off", ""),
       write("junk.ply", "garbage\n"),
   };
