@@ -273,6 +273,106 @@ TEST(Clean, a_flap_on_a_closed_surface_leaves_the_surface_closed) {
   EXPECT_EQ(on_sphere, sphere.n_faces());
 }
 
+namespace {
+double thinnest(const TriMesh& t) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const auto& f : t.faces) {
+    const Vec3 a = t.positions[f[0]], b = t.positions[f[1]], c = t.positions[f[2]];
+    const double l2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    lowest = std::min(lowest, (b - a).cross(c - a).norm() / l2);
+  }
+  return lowest;
+}
+Index faces_facing_down(const TriMesh& t) {
+  Index n = 0;
+  for (const auto& f : t.faces)
+    n += (t.positions[f[1]] - t.positions[f[0]]).cross(t.positions[f[2]] - t.positions[f[0]]).z() < 0;
+  return n;
+}
+}  // namespace
+
+TEST(Clean, flips_the_longest_edge_under_a_cap) {
+  // A cap: m stands 1e-5 above the middle of edge a-b, which it shares with the triangle
+  // below; the ones above hold m. Flipping a-b gives m-o, and nothing moves.
+  TriMesh t;
+  t.positions = {{0, 0, 0}, {2, 0, 0}, {1, 1e-5, 0}, {1, -1, 0}, {1, 1, 0}};  // a b m o top
+  t.faces = {{0, 1, 2}, {1, 0, 3}, {0, 2, 4}, {2, 1, 4}};
+  const TriMesh before = t;
+  ASSERT_LT(thinnest(t), 1e-3);
+  std::vector<std::string> notes;
+  const CleanReport r = clean(t, "in.ply", [&](std::string_view m) { notes.emplace_back(m); });
+  EXPECT_EQ(r.flipped_edges, 1u);
+  EXPECT_TRUE(r.changed_faces());
+  EXPECT_EQ(t.positions, before.positions);
+  EXPECT_EQ(t.n_faces(), before.n_faces());
+  EXPECT_GT(thinnest(t), 0.1);
+  EXPECT_EQ(faces_facing_down(t), 0u);
+  expect_edge_manifold_and_oriented(t);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("1 edges flipped"), std::string::npos) << notes[0];
+}
+
+TEST(Clean, a_row_of_caps_is_mended_from_its_ends) {
+  // Four vertices just above edge a-b, each cap resting on the next: the first flip
+  // must wait for its neighbour's, as in a finely split cap.
+  TriMesh t;
+  t.positions = {{0, 0, 0}, {5, 0, 0}, {2.5, -2, 0}, {2.5, 3, 0}};  // a b o top
+  for (int i = 1; i <= 4; ++i) t.positions.emplace_back(i, 1e-5 * (i % 2 ? 1 : 2), 0);
+  t.faces = {{1, 0, 2}, {0, 1, 4}, {4, 1, 5}, {5, 1, 6}, {6, 1, 7}};  // caps fanned from b
+  t.faces.push_back({0, 4, 3});
+  for (Index v = 4; v < 7; ++v) t.faces.push_back({v, v + 1, 3});
+  t.faces.push_back({7, 1, 3});
+  const TriMesh before = t;
+  ASSERT_LT(thinnest(t), 1e-3);
+  const CleanReport r = clean(t);
+  EXPECT_GE(r.flipped_edges, 4u);
+  EXPECT_GT(thinnest(t), 1e-3);
+  EXPECT_EQ(t.positions, before.positions);
+  EXPECT_EQ(faces_facing_down(t), 0u);
+  expect_edge_manifold_and_oriented(t);
+}
+
+TEST(Clean, flips_a_single_triangle_folded_back_onto_its_neighbour) {
+  // A hexagon fanned from its centre c, and one more triangle beyond edge v0-v1. c is
+  // moved past that edge: triangle (c, v0, v1) turns over onto the one beyond, the rest
+  // of the fan still faces up. Flipping v0-v1 joins c to the far vertex.
+  TriMesh t;
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i < 6; ++i) t.positions.emplace_back(std::cos(i * pi / 3), std::sin(i * pi / 3), 0);
+  const Vec3 out = 0.5 * (t.positions[0] + t.positions[1]).normalized();
+  t.positions.push_back(out * 2.2);  // c, 1.1 from the middle where the edge is 0.87 away
+  t.positions.push_back(out * 4.0);  // beyond
+  for (Index i = 0; i < 6; ++i) t.faces.push_back({6, i, (i + 1) % 6});
+  t.faces.push_back({1, 0, 7});
+  const TriMesh before = t;
+  ASSERT_EQ(faces_facing_down(t), 1u);
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.flipped_faces, 0u);  // consistently oriented all along: only the geometry folds
+  EXPECT_EQ(r.flipped_edges, 1u);
+  EXPECT_EQ(faces_facing_down(t), 0u);
+  EXPECT_EQ(t.positions, before.positions);
+  EXPECT_EQ(t.n_faces(), before.n_faces());
+  expect_edge_manifold_and_oriented(t);
+}
+
+TEST(Clean, leaves_a_needle_and_a_fold_on_the_border) {
+  // No flip mends these: a needle's flip is another needle; a fold with a border edge
+  // is not turned against three neighbours.
+  TriMesh t;
+  t.positions = {{0, 0, 0}, {2, 0, 0}, {2, 1e-5, 0}, {1, -1, 0}};  // needle (a, b, b')
+  t.faces = {{0, 1, 2}, {1, 0, 3}};
+  TriMesh u = t;
+  CleanReport r = clean(u);
+  EXPECT_EQ(r.flipped_edges, 0u);
+  EXPECT_EQ(u.faces, t.faces);
+  t.positions = {{0, 0, 0}, {1, 0, 0}, {0.5, -0.3, 0}, {0, 1, 0}};  // (0,1,2) faces down, edge 0-1 inside
+  t.faces = {{0, 1, 2}, {1, 0, 3}};
+  u = t;
+  r = clean(u);
+  EXPECT_EQ(r.flipped_edges, 0u);
+  EXPECT_EQ(u.faces, t.faces);
+}
+
 TEST(Clean, refuses_unusable_input_with_one_sentence) {
   TriMesh empty;
   EXPECT_NE(message_of(empty).find("empty"), std::string::npos);

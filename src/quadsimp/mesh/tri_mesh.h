@@ -33,11 +33,12 @@ struct CleanReport {
   Index removed_unreferenced_vertices = 0;
   Index split_nonmanifold_vertices = 0;
   Index flipped_faces = 0;  //!< faces re-oriented to agree with their component
+  Index flipped_edges = 0;  //!< edges flipped to mend caps and single folded-back triangles
   //! Whether the faces themselves changed (a vertex merged or split, a face removed or
   //! turned); dropping unreferenced vertices does not count.
   bool changed_faces() const {
     return merged_duplicate_vertices + merged_close_vertices + removed_degenerate_faces + removed_duplicate_faces +
-               removed_nonmanifold_faces + split_nonmanifold_vertices + flipped_faces > 0;
+               removed_nonmanifold_faces + split_nonmanifold_vertices + flipped_faces + flipped_edges > 0;
   }
 };
 
