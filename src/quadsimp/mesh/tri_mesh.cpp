@@ -369,16 +369,18 @@ double thinness(const TriMesh& m, const std::array<Index, 3>& t, Index& longest)
 // Flip" for folds). No vertex moves, and the pair covers the same ground as before up to
 // the cap's height or the fold's depth.
 // - A cap: its apex lies almost on its longest edge (thinner than kCapThinness). A wall
-//   no working mesh resolves, yet its normal is its own: glmark2's bunny closes a hole
-//   along its base with four, standing at 64 degrees to it. Split finely, a cap's inner
-//   vertices have only cap faces; the conversion paired them into quads with no area,
-//   whose orientation every later move was checked against, and on one machine a quad
-//   there kept an edge of 0.03 mu. Its longest edge is flipped, when the thinner of the
-//   two new triangles is less thin than before. Needles (two corners almost together)
-//   are left: no flip mends them.
+//   no working mesh resolves, yet its normal is its own: glmark2's bunny has four, two
+//   where it closes a hole along its base, standing at 64 degrees to it. Split finely,
+//   a cap's inner vertices have only cap faces; the conversion paired them into quads
+//   with no area, whose orientation every later move was checked against, and on one
+//   machine a quad there kept an edge of 0.03 mu. Its longest edge is flipped when the
+//   thinner of the two new triangles is less thin than before. Needles (two corners
+//   almost together) are left: no flip mends them. The datasets have no cap (their
+//   thinnest triangle: 3.9e-3).
 // - A fold: a single triangle turned back against all three neighbours by over 120
-//   degrees (a Z-fold of a scan: glmark2's bunny has 2, the armadillo 17). The edge
-//   flipped is one whose far neighbour lies under the fold's apex.
+//   degrees (a Z-fold of a scan: glmark2's bunny has 2, bunny.ply 1, the armadillo 17,
+//   16 of them mended). The edge flipped is one whose far neighbour lies under the
+//   fold's apex. Over a fold the working mesh kept a flipped quad on that machine.
 // Either flip is made only when both new triangles face like the neighbour they replace.
 // Rounds of independent flips, so that a row of caps is taken from its ends inwards.
 constexpr double kCapThinness = 1e-3, kFoldCos = -0.5;

@@ -49,7 +49,9 @@ struct CleanReport {
 //! vertex or zero area removed, duplicate faces removed, at an edge with more than
 //! two triangles all removed but the two across which the surface runs on straightest,
 //! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
-//! re-oriented consistently within each component.
+//! re-oriented consistently within each component, caps (height under 1e-3 of the
+//! longest edge) and single triangles folded back onto their neighbours mended by
+//! flipping an edge (no vertex moves).
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
 //!        out-of-range indices, a non-orientable component. `what` is one sentence;
 //!        `source` (a file name) prefixes it.
