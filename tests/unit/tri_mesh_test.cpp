@@ -310,6 +310,15 @@ TEST(Clean, flips_the_longest_edge_under_a_cap) {
   expect_edge_manifold_and_oriented(t);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("1 edges flipped"), std::string::npos) << notes[0];
+
+  // The cap given the other way round: orientation turns it first, and the mending
+  // must then find its neighbours across the turned edges.
+  TriMesh turned = before;
+  std::swap(turned.faces[0][1], turned.faces[0][2]);
+  const CleanReport rt = clean(turned);
+  EXPECT_EQ(rt.flipped_faces, 1u);
+  EXPECT_EQ(rt.flipped_edges, 1u);
+  EXPECT_EQ(turned.faces, t.faces);
 }
 
 TEST(Clean, a_row_of_caps_is_mended_from_its_ends) {

@@ -264,7 +264,8 @@ void remove_faces_at_nonmanifold_edges(TriMesh& m, const CornersAround& around, 
 
 // Flips faces so that every manifold edge is walked in opposite directions by its
 // two faces. Per component, the orientation kept is the one most faces already had.
-void orient(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, CleanReport& r, const std::string& src) {
+// The adjacency follows the flips, so that later steps can use it.
+void orient(TriMesh& m, std::vector<std::array<Index, 3>>& adj, CleanReport& r, const std::string& src) {
   const Index nf = m.n_faces();
   std::vector<int> flip(nf, -1);
   std::vector<Index> stack, members;
@@ -298,6 +299,7 @@ void orient(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, CleanRepor
     for (Index f : members) {
       if (bool(flip[f]) != invert) {
         std::swap(m.faces[f][1], m.faces[f][2]);
+        std::swap(adj[f][0], adj[f][2]);  // edges 0-1, 1-2, 2-0 are now 0-2, 2-1, 1-0
         ++r.flipped_faces;
       }
     }
@@ -385,15 +387,16 @@ double thinness(const TriMesh& m, const std::array<Index, 3>& t, Index& longest)
 // Rounds of independent flips, so that a row of caps is taken from its ends inwards.
 constexpr double kCapThinness = 1e-3, kFoldCos = -0.5;
 
-Index mend_by_edge_flips(TriMesh& m) {
+Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
   const auto& P = m.positions;
   const auto normal = [&](const std::array<Index, 3>& t) { return (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]); };
   Index longest = 0, flips = 0;
   std::vector<Index> todo;
   for (Index f = 0; f < m.n_faces(); ++f) todo.push_back(f);
   for (int round = 0; !todo.empty() && round < 64; ++round) {
-    const CornersAround around = corners_around(m);
-    const auto adj = adjacency_from(m, around);
+    // Most meshes need no flip: the corner lists are built only for the first one tried.
+    CornersAround around;
+    if (round > 0) adj = adjacency_from(m, around = corners_around(m));
     const auto folded = [&](Index f) {
       const Vec3 n = normal(m.faces[f]).normalized();
       for (Index g : adj[f])
@@ -411,6 +414,7 @@ Index mend_by_edge_flips(TriMesh& m) {
       const Index a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
       const Index o = tg[0] != a && tg[0] != b ? tg[0] : tg[1] != a && tg[1] != b ? tg[1] : tg[2];
       if (o == c || touched[a] || touched[b] || touched[c] || touched[o]) return false;
+      if (around.start.empty()) around = corners_around(m);
       for (Index i = around.start[c]; i < around.start[c + 1]; ++i) {  // c-o an edge already
         const auto& u = m.faces[around.corner[i] / 3];
         if (u[0] == o || u[1] == o || u[2] == o) return false;
@@ -567,26 +571,27 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
   merge_duplicate_vertices(m, r);
   remove_degenerate_and_duplicate_faces(m, r);
   if (m.faces.empty()) throw InvalidInput(src + ": every face is degenerate (zero area)");
+  std::vector<std::array<Index, 3>> adj;
   {
     // adjacency_from() finds a non-manifold edge as it goes; the repair runs only for a
     // mesh that has one, on the same corners.
     const auto manifold_adjacency = [&] {
       bool nonmanifold = false;
       const CornersAround around = corners_around(m);
-      auto adj = adjacency_from(m, around, &nonmanifold);
-      if (!nonmanifold) return adj;
+      auto found = adjacency_from(m, around, &nonmanifold);
+      if (!nonmanifold) return found;
       remove_faces_at_nonmanifold_edges(m, around, r);
       return adjacency_from(m, corners_around(m));
     };
-    auto adj = manifold_adjacency();
+    adj = manifold_adjacency();
     if (merge_close_border_vertices(m, adj, r)) {
       remove_degenerate_and_duplicate_faces(m, r);
       adj = manifold_adjacency();
     }
     orient(m, adj, r, src);
   }
-  split_nonmanifold_vertices(m, r);
-  r.flipped_edges = mend_by_edge_flips(m);
+  split_nonmanifold_vertices(m, r);  // faces keep their neighbours
+  r.flipped_edges = mend_by_edge_flips(m, std::move(adj));
   remove_unreferenced(m, r);
   // merged copies are not "unreferenced"
   r.removed_unreferenced_vertices -= r.merged_duplicate_vertices + r.merged_close_vertices;
