@@ -440,8 +440,8 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
         });
       } else if (folded(f)) {
         left.push_back(f);
-        for (Index k = 0; k < 3 && !try_flip(f, k, [](const auto&...) { return true; }); ++k) {
-        }
+        for (Index k = 0; k < 3; ++k)
+          if (try_flip(f, k, [](const auto&...) { return true; })) break;
       }
     }
     if (flips == flips_before) break;
@@ -610,7 +610,9 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
     note(r.removed_unreferenced_vertices, "unreferenced vertices removed");
     note(r.split_nonmanifold_vertices, "non-manifold vertices split");
     note(r.flipped_faces, "faces re-oriented to match their neighbours");
-    note(r.flipped_edges, "edges flipped to mend caps (triangles whose height is under 1e-3 of their longest edge) and single triangles folded back onto their neighbours");
+    note(r.flipped_edges,
+         "edges flipped to mend caps (triangles whose height is under 1e-3 of their longest edge) and "
+         "single triangles folded back onto their neighbours");
   }
   return r;
 }
