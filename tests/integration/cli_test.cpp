@@ -181,6 +181,20 @@ TEST_F(Cli, a_fin_on_an_edge_is_removed_and_reported) {
   for (const qs::Vec3& x : out.positions) EXPECT_EQ(x.z(), 0.0);  // not the fin's tip
 }
 
+TEST_F(Cli, a_cap_is_mended_and_reported) {
+  // Vertex 3 stands 1e-5 above the middle of edge 1-2, which the triangle below shares:
+  // that edge is flipped, and nothing moves.
+  const std::string in = write("cap.obj",
+                               "v 0 0 0\nv 2 0 0\nv 1 1e-5 0\nv 1 -1 0\nv 1 1 0\n"
+                               "f 1 2 3\nf 2 1 4\nf 1 3 5\nf 3 2 5\n");
+  const CliRun r = run("convert " + in + " " + p("quad.obj"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("cap.obj: 1 edges flipped to mend caps"), std::string::npos) << r.out;
+  const qs::MeshFile out = qs::read_mesh(p("quad.obj"));
+  EXPECT_TRUE(out.is_pure_quad());
+  EXPECT_EQ(out.positions.size(), 5u);
+}
+
 TEST_F(Cli, bad_input_exits_1_and_writes_nothing) {
   const std::vector<std::string> bad = {
       write("cloud.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
