@@ -374,6 +374,15 @@ TEST(Clean, leaves_a_needle_and_a_fold_on_the_border) {
   CleanReport r = clean(u);
   EXPECT_EQ(r.flipped_edges, 0u);
   EXPECT_EQ(u.faces, t.faces);
+  // The same needle with a neighbour across its longest edge, b'-a: flipping that edge
+  // would give (b, b', top), a needle again (the flip was made when any thin triangle
+  // counted as a cap).
+  t.positions.emplace_back(1, 1, 0);  // top
+  t.faces.push_back({0, 2, 4});
+  u = t;
+  r = clean(u);
+  EXPECT_EQ(r.flipped_edges, 0u);
+  EXPECT_EQ(u.faces, t.faces);
   t.positions = {{0, 0, 0}, {1, 0, 0}, {0.5, -0.3, 0}, {0, 1, 0}};  // (0,1,2) faces down, edge 0-1 inside
   t.faces = {{0, 1, 2}, {1, 0, 3}};
   u = t;

@@ -366,6 +366,15 @@ double thinness(const TriMesh& m, const std::array<Index, 3>& t, Index& longest)
   return (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).norm() / l2;
 }
 
+// Whether the corner opposite edge k stands over the edge's inner four fifths: a thin
+// triangle with its apex there is a cap, one with its apex near an end a needle (two
+// corners almost together), whose flip only makes another needle.
+bool apex_over_middle(const TriMesh& m, const std::array<Index, 3>& t, Index k) {
+  const Vec3 &a = m.positions[t[k]], &b = m.positions[t[(k + 1) % 3]], &c = m.positions[t[(k + 2) % 3]];
+  const double s = (c - a).dot(b - a) / (b - a).squaredNorm();
+  return s > 0.1 && s < 0.9;
+}
+
 // Two kinds of triangle are mended by flipping one of their edges, the standard repairs
 // (Botsch and Kobbelt 2001 for caps; MeshLab's "Remove Isolated Folded Faces by Edge
 // Flip" for folds). No vertex moves, and the pair covers the same ground as before up to
@@ -376,9 +385,9 @@ double thinness(const TriMesh& m, const std::array<Index, 3>& t, Index& longest)
 //   a cap's inner vertices have only cap faces; the conversion paired them into quads
 //   with no area, whose orientation every later move was checked against, and on one
 //   machine a quad there kept an edge of 0.03 mu. Its longest edge is flipped when the
-//   thinner of the two new triangles is less thin than before. Needles (two corners
-//   almost together) are left: no flip mends them. The datasets have no cap (their
-//   thinnest triangle: 3.9e-3).
+//   thinner of the two new triangles is less thin than before. Needles (the apex near
+//   an end of that edge) are left: their flip is another needle. The datasets have no
+//   cap (their thinnest triangle: 3.9e-3).
 // - A fold: a single triangle turned back against all three neighbours by over 120
 //   degrees (a Z-fold of a scan: glmark2's bunny has 2, bunny.ply 1, the armadillo 17,
 //   16 of them mended). The edge flipped is one whose far neighbour lies under the
@@ -432,7 +441,7 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
     const Index flips_before = flips;
     for (Index f : todo) {
       const double thin = thinness(m, m.faces[f], longest);
-      if (thin < kCapThinness) {
+      if (thin < kCapThinness && apex_over_middle(m, m.faces[f], longest)) {
         left.push_back(f);
         try_flip(f, longest, [&](const auto& f2, const auto& g2, const auto& tg) {
           Index unused;
