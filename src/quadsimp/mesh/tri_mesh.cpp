@@ -389,29 +389,36 @@ bool apex_over_middle(const TriMesh& m, const std::array<Index, 3>& t, Index k) 
 //   an end of that edge) are left: their flip is another needle. The datasets have no
 //   cap (their thinnest triangle: 3.9e-3).
 // - A fold: a single triangle turned back against all three neighbours by over 120
-//   degrees (a Z-fold of a scan: glmark2's bunny has 2, bunny.ply 1, the armadillo 17,
+//   degrees (kFoldedBackCos; a Z-fold of a scan: glmark2's bunny has 2, bunny.ply 1, the armadillo 17,
 //   16 of them mended). The edge flipped is one whose far neighbour lies under the
 //   fold's apex. Over a fold the working mesh kept a flipped quad on that machine.
 // Either flip is made only when both new triangles face like the neighbour they replace.
 // Rounds of independent flips, so that a row of caps is taken from its ends inwards.
-constexpr double kCapThinness = 1e-3, kFoldCos = -0.5;
+constexpr double kCapThinness = 1e-3;
 
 Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
   const auto& P = m.positions;
   const auto normal = [&](const std::array<Index, 3>& t) { return (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]); };
-  Index longest = 0, flips = 0;
-  std::vector<Index> todo;
-  for (Index f = 0; f < m.n_faces(); ++f) todo.push_back(f);
+  // The longest edge of a cap, kNone for any other triangle.
+  const auto cap_edge = [&](Index f, double& thin) {
+    Index longest = 0;
+    thin = thinness(m, m.faces[f], longest);
+    return thin < kCapThinness && apex_over_middle(m, m.faces[f], longest) ? longest : kNone;
+  };
+  const auto folded = [&](Index f) {
+    const Vec3 n = normal(m.faces[f]).normalized();
+    for (Index g : adj[f])
+      if (g == kNone || n.dot(normal(m.faces[g]).normalized()) >= kFoldedBackCos) return false;
+    return true;
+  };
+  std::vector<Index> todo;  // most meshes have neither: nothing more is built for them
+  double thin = 0;
+  for (Index f = 0; f < m.n_faces(); ++f)
+    if (cap_edge(f, thin) != kNone || folded(f)) todo.push_back(f);
+  Index flips = 0;
   for (int round = 0; !todo.empty() && round < 64; ++round) {
-    // Most meshes need no flip: the corner lists are built only for the first one tried.
-    CornersAround around;
+    CornersAround around;  // built for the first flip tried
     if (round > 0) adj = adjacency_from(m, around = corners_around(m));
-    const auto folded = [&](Index f) {
-      const Vec3 n = normal(m.faces[f]).normalized();
-      for (Index g : adj[f])
-        if (g == kNone || n.dot(normal(m.faces[g]).normalized()) >= kFoldCos) return false;
-      return true;
-    };
     // Flips edge k of f (corners k, k+1) if `better` accepts the new pair; f = (a, b, c)
     // and g = (b, a, o) become (c, a, o) and (c, o, b), oriented alike.
     std::vector<char> touched(m.n_vertices(), 0);
@@ -440,10 +447,9 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
     std::vector<Index> left;
     const Index flips_before = flips;
     for (Index f : todo) {
-      const double thin = thinness(m, m.faces[f], longest);
-      if (thin < kCapThinness && apex_over_middle(m, m.faces[f], longest)) {
+      if (const Index k = cap_edge(f, thin); k != kNone) {
         left.push_back(f);
-        try_flip(f, longest, [&](const auto& f2, const auto& g2, const auto& tg) {
+        try_flip(f, k, [&](const auto& f2, const auto& g2, const auto& tg) {
           Index unused;
           return std::min(thinness(m, f2, unused), thinness(m, g2, unused)) > std::min(thin, thinness(m, tg, unused));
         });

@@ -21,6 +21,11 @@ struct TriMesh {
   Index n_faces() const { return Index(faces.size()); }
 };
 
+//! Neighbouring triangles whose normals' cosine is under this are turned back onto each
+//! other (by over 120 degrees): clean() mends a single triangle so turned against all its
+//! neighbours, and ReferenceSurface marks small patches bounded by such edges.
+inline constexpr double kFoldedBackCos = -0.5;
+
 inline double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
 
 //! What clean() repaired. Every count is also reported through the log function.

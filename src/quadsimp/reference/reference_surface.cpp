@@ -61,8 +61,8 @@ bool closest_callback(RTCPointQueryFunctionArguments* args) {
 // every triangle touching it, where the layers meet and the normals point both ways.
 std::vector<char> folded_flaps(const TriMesh& m, const std::vector<std::array<Index, 3>>& adjacency,
                                const std::vector<Vec3>& normals, const std::vector<double>& area) {
-  constexpr double kFoldCos = -0.5, kFlapShare = 1e-4;
-  const auto joined = [&](Index f, Index g) { return normals[f].dot(normals[g]) >= kFoldCos; };
+  constexpr double kFlapShare = 1e-4;
+  const auto joined = [&](Index f, Index g) { return normals[f].dot(normals[g]) >= kFoldedBackCos; };
   std::vector<char> flap(normals.size(), 0);
   bool folds = false;  // most meshes have no edge turning back: no components to find
   for (Index f = 0; f < m.n_faces() && !folds; ++f)
