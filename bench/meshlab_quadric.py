@@ -10,6 +10,7 @@ time is decimation and pairing only; ours is the CLI's, loading and conversion i
     python3 bench/meshlab_quadric.py [--quadsimp build/src/quadsimp] [--python .venv/bin/python]
 """
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -70,9 +71,8 @@ def main():
     print()
     for name, values in ratios.items():
         if values:
-            values.sort()
-            print(f"{name}: RMS {values[len(values) // 2]:.2f} times MeshLab's (median over {len(values)} rows; "
-                  f"{values[0]:.2f} to {values[-1]:.2f})")
+            print(f"{name}: RMS {statistics.median(values):.2f} times MeshLab's (median over {len(values)} rows; "
+                  f"{min(values):.2f} to {max(values):.2f})")
 
 
 if __name__ == "__main__":
