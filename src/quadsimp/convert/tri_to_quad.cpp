@@ -198,10 +198,7 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
   cand.reserve(3 * t.faces.size() / 2);
   const double cos_max = std::cos(opt.max_dihedral_deg * M_PI / 180.0);
   std::vector<Vec3> normal(t.n_faces());
-  for (Index f = 0; f < t.n_faces(); ++f) {
-    const auto& v = t.faces[f];
-    normal[f] = (t.positions[v[1]] - t.positions[v[0]]).cross(t.positions[v[2]] - t.positions[v[0]]).normalized();
-  }
+  for (Index f = 0; f < t.n_faces(); ++f) normal[f] = t.area_normal(t.faces[f]).normalized();
   for (Index f = 0; f < t.n_faces(); ++f)
     for (Index k = 0; k < 3; ++k) {
       const Index g = adj[f][k];

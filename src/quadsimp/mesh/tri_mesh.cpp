@@ -191,9 +191,7 @@ void remove_degenerate_and_duplicate_faces(TriMesh& m, CleanReport& r) {
   kept.reserve(m.faces.size());
   for (const auto& t : m.faces) {
     const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-    const bool flat = !repeated && (m.positions[t[1]] - m.positions[t[0]])
-                                       .cross(m.positions[t[2]] - m.positions[t[0]])
-                                       .squaredNorm() <= min_area2;
+    const bool flat = !repeated && m.area_normal(t).squaredNorm() <= min_area2;
     if (repeated || flat)
       ++r.removed_degenerate_faces;
     else
@@ -363,7 +361,7 @@ double thinness(const TriMesh& m, const std::array<Index, 3>& t, Index& longest)
     const double e2 = (P[t[(k + 1) % 3]] - P[t[k]]).squaredNorm();
     if (e2 > l2) l2 = e2, longest = k;
   }
-  return (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).norm() / l2;
+  return m.area_normal(t).norm() / l2;
 }
 
 // Whether the corner opposite edge k stands over the edge's inner four fifths: a thin
@@ -397,8 +395,6 @@ bool apex_over_middle(const TriMesh& m, const std::array<Index, 3>& t, Index k) 
 constexpr double kCapThinness = 1e-3;
 
 Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
-  const auto& P = m.positions;
-  const auto normal = [&](const std::array<Index, 3>& t) { return (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]); };
   // The longest edge of a cap, kNone for any other triangle.
   const auto cap_edge = [&](Index f, double& thin) {
     Index longest = 0;
@@ -406,9 +402,9 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
     return thin < kCapThinness && apex_over_middle(m, m.faces[f], longest) ? longest : kNone;
   };
   const auto folded = [&](Index f) {
-    const Vec3 n = normal(m.faces[f]).normalized();
+    const Vec3 n = m.area_normal(m.faces[f]).normalized();
     for (Index g : adj[f])
-      if (g == kNone || n.dot(normal(m.faces[g]).normalized()) >= kFoldedBackCos) return false;
+      if (g == kNone || n.dot(m.area_normal(m.faces[g]).normalized()) >= kFoldedBackCos) return false;
     return true;
   };
   std::vector<Index> todo;  // most meshes have neither: nothing more is built for them
@@ -436,8 +432,8 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
         if (u[0] == o || u[1] == o || u[2] == o) return false;
       }
       const std::array<Index, 3> f2{c, a, o}, g2{c, o, b};
-      const Vec3 ng = normal(tg);
-      if (normal(f2).dot(ng) <= 0 || normal(g2).dot(ng) <= 0 || !better(f2, g2, tg)) return false;
+      const Vec3 ng = m.area_normal(tg);
+      if (m.area_normal(f2).dot(ng) <= 0 || m.area_normal(g2).dot(ng) <= 0 || !better(f2, g2, tg)) return false;
       m.faces[f] = f2;
       m.faces[g] = g2;
       touched[a] = touched[b] = touched[c] = touched[o] = 1;

@@ -19,6 +19,11 @@ struct TriMesh {
 
   Index n_vertices() const { return Index(positions.size()); }
   Index n_faces() const { return Index(faces.size()); }
+  //! The cross product of triangle t's edges from its first corner: its normal, as long
+  //! as twice its area.
+  Vec3 area_normal(const std::array<Index, 3>& t) const {
+    return (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+  }
 };
 
 //! Neighbouring triangles whose normals' cosine is under this are turned back onto each

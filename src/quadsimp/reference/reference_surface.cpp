@@ -127,7 +127,7 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   double edge_sum = 0;
   for (Index f = 0; f < mesh_.n_faces(); ++f) {
     const auto& t = mesh_.faces[f];
-    const Vec3 n = (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]);
+    const Vec3 n = mesh_.area_normal(t);
     normals_[f] = n.normalized();
     area[f] = n.norm();
     for (int k = 0; k < 3; ++k) {
