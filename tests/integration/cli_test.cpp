@@ -195,6 +195,21 @@ TEST_F(Cli, a_cap_is_mended_and_reported) {
   EXPECT_EQ(out.positions.size(), 5u);
 }
 
+TEST_F(Cli, a_folded_patch_is_laid_flat_and_reported) {
+  // Five vertices of a grid pushed past their neighbours fold a strip of triangles over
+  // onto it; cleaning moves them back between their neighbours.
+  const int n = 128;
+  TriMesh grid = fixtures::tri_grid(n, n);
+  for (int j = 40; j < 45; ++j) grid.positions[j * (n + 1) + 40].x() += 1.5 / n;
+  const std::string in = p("folded.ply");
+  write_tri_mesh_ply(in, grid);
+  const CliRun r = run("simplify " + in + " " + p("quad.ply") + " --faces 1000");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("folded.ply: 1 patches of triangles folded back onto the surface laid flat"), std::string::npos)
+      << r.out;
+  EXPECT_TRUE(qs::read_mesh(p("quad.ply")).is_pure_quad());
+}
+
 TEST_F(Cli, bad_input_exits_1_and_writes_nothing) {
   const std::vector<std::string> bad = {
       write("cloud.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"

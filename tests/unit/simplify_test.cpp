@@ -12,6 +12,7 @@
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/tri_to_quad.h"
 #include "quadsimp/io/load_input.h"
+#include "quadsimp/io/mesh_io.h"
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/metrics/metrics.h"
 
@@ -406,6 +407,41 @@ TEST(Simplify, a_scan_folded_over_onto_itself_gives_sound_quads) {
   EXPECT_LE(q.homeometry_max, 2.0);
 }
 
+TEST(Simplify, a_patch_folded_back_gives_sound_quads) {
+  // Five vertices of a flat grid pushed past their neighbours: a strip of triangles
+  // turned over onto the grid, between 1e-4 and 1e-3 of its area. When only patches
+  // under 1e-4 counted as folded (none laid flat, none marked), these runs ended with
+  // flipped quads over the strip (4 at 1,000, with 2 non-convex and 2 folded). Now
+  // clean() lays it flat; marking it for over_flap() alone would also pass here.
+  const int n = 128;
+  TriMesh t = tri_grid(n, n);
+  for (int j = 40; j < 45; ++j) t.positions[j * (n + 1) + 40].x() += 1.5 / n;
+  for (Index target : {1000u, 3000u}) {
+    SCOPED_TRACE(target);
+    Case c = prepare(t);
+    const ReferenceSurface ref(c.tri);
+    run_and_check(c, target, ref);
+    EXPECT_EQ(quad_quality(c.quads, &ref).folded_faces, 0u);
+  }
+}
+
+TEST(Simplify, a_scan_folded_over_by_several_triangles_gives_sound_quads) {
+  // The same bunny split in four twice *before* cleaning: its fold is a patch of 16
+  // triangles, which no edge flip mends, and clean() lays it flat. Without that, the
+  // simplifier's care over folds (over_flap()) left a flipped quad and an edge of 0.18
+  // mu at 20,000 quads on one machine; with it, it ends as the run above does.
+  const std::string p = "/usr/share/glmark2/models/bunny.obj";
+  if (!std::ifstream(p)) GTEST_SKIP() << p << " not installed (glmark2-data)";
+  const TriMesh raw = triangles_of(read_mesh(p));
+  Case c = prepare(split_in_four(split_in_four(raw)));
+  const ReferenceSurface ref(c.tri);
+  run_and_check(c, 20000, ref);
+  const QuadQuality q = quad_quality(c.quads, &ref);
+  EXPECT_EQ(q.folded_faces, 0u);
+  EXPECT_GE(q.homeometry_min, 0.5);
+  EXPECT_LE(q.homeometry_max, 2.0);
+}
+
 TEST(Simplify, no_quad_spans_a_fold_facing_away) {
   // Thin, sharply folded parts (the gargoyle's wings, the armadillo's fingers and ears):
   // without the fold check in follows_reference() these runs end with 2 and 3 quads
@@ -585,7 +621,7 @@ TEST(ReferenceSurface, closest_within_finds_the_closest_point) {
 // with the triangles around its corners. A flattened sphere (two sides alike, meeting
 // at a sharp rim) has no flap, nor has the grid before the push.
 TEST(ReferenceSurface, is_flap_marks_a_patch_folded_over_and_its_ring) {
-  const int n = 128;  // the flap must be under 1e-4 of the area
+  const int n = 128;  // the flap must be under 1e-3 of the area
   TriMesh grid = tri_grid(n, n);
   const ReferenceSurface plain(grid);
   const Index v = Index(40 * (n + 1) + 40);

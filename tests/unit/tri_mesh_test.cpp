@@ -11,6 +11,8 @@
 #include <set>
 
 #include "fixtures/shapes.h"
+#include "quadsimp/io/mesh_io.h"
+#include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/util/errors.h"
 
 using namespace qs;
@@ -362,6 +364,46 @@ TEST(Clean, flips_a_single_triangle_folded_back_onto_its_neighbour) {
   EXPECT_EQ(t.positions, before.positions);
   EXPECT_EQ(t.n_faces(), before.n_faces());
   expect_edge_manifold_and_oriented(t);
+}
+
+// Five vertices in a column of a flat grid, each pushed one and a half cells past its
+// neighbour: a strip of triangles turns over onto the grid, a Z-fold no one edge flip
+// mends (the simplifier left flipped and folded quads over it). Each vertex of the strip
+// moves to the mean of its neighbours, which puts the pushed ones back where they were.
+TEST(Clean, lays_flat_a_patch_of_several_triangles_folded_back) {
+  const int n = 128;
+  const TriMesh grid = tri_grid(n, n);
+  TriMesh t = grid;
+  for (int j = 40; j < 45; ++j) t.positions[j * (n + 1) + 40].x() += 1.5 / n;
+  ASSERT_GT(faces_facing_down(t), 4u);
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.unfolded_patches, 1u);
+  EXPECT_GE(r.moved_vertices, 5u);
+  EXPECT_TRUE(r.changed_faces());
+  EXPECT_EQ(faces_facing_down(t), 0u);
+  EXPECT_EQ(t.faces, grid.faces);
+  for (Index v = 0; v < t.n_vertices(); ++v) EXPECT_NEAR((t.positions[v] - grid.positions[v]).norm(), 0, 1e-6 / n);
+}
+
+// The armadillo's one fold that no flip mends is a single triangle, and its neighbour
+// faces away too but joins the surface at under 120 degrees (so it is not part of the
+// patch). With the patch's three corners moved, that neighbour still faces away: the
+// patch stays as it was, and no vertex moves.
+TEST(Clean, leaves_a_folded_patch_that_would_not_lie_flat) {
+  const std::string path = shared_dataset("armadillo");
+  if (path.empty()) GTEST_SKIP() << "the shared datasets are not beside the project";
+  const TriMesh raw = triangles_of(read_mesh(path));
+  TriMesh t = raw;
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.unfolded_patches, 0u);
+  EXPECT_EQ(r.moved_vertices, 0u);
+  std::vector<Vec3> normals(t.n_faces());
+  for (Index f = 0; f < t.n_faces(); ++f) normals[f] = t.area_normal(t.faces[f]).normalized();
+  std::vector<Index> patch;
+  ASSERT_EQ(folded_patches(t, triangle_adjacency(t), normals, patch), 1u) << "the case no longer tries a patch";
+  std::set<std::array<double, 3>> input;
+  for (const Vec3& x : raw.positions) input.insert({x.x(), x.y(), x.z()});
+  for (const Vec3& x : t.positions) ASSERT_TRUE(input.count({x.x(), x.y(), x.z()})) << "a vertex moved";
 }
 
 TEST(Clean, leaves_a_needle_and_a_fold_on_the_border) {

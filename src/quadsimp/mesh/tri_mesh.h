@@ -28,7 +28,8 @@ struct TriMesh {
 
 //! Neighbouring triangles whose normals' cosine is under this are turned back onto each
 //! other (by over 120 degrees): clean() mends a single triangle so turned against all its
-//! neighbours, and ReferenceSurface marks small patches bounded by such edges.
+//! neighbours and small patches bounded by such edges (folded_patches()), and
+//! ReferenceSurface marks the patches it could not mend.
 inline constexpr double kFoldedBackCos = -0.5;
 
 inline double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
@@ -42,13 +43,16 @@ struct CleanReport {
   Index removed_nonmanifold_faces = 0;  //!< at edges with more than two triangles, all but the straightest pair
   Index removed_unreferenced_vertices = 0;
   Index split_nonmanifold_vertices = 0;
-  Index flipped_faces = 0;  //!< faces re-oriented to agree with their component
-  Index flipped_edges = 0;  //!< edges flipped to mend caps and single folded-back triangles
-  //! Whether the faces themselves changed (a vertex merged or split, a face removed or
-  //! turned); dropping unreferenced vertices does not count.
+  Index flipped_faces = 0;     //!< faces re-oriented to agree with their component
+  Index flipped_edges = 0;     //!< edges flipped to mend caps and single folded-back triangles
+  Index unfolded_patches = 0;  //!< small patches folded back (folded_patches()), laid flat
+  Index moved_vertices = 0;    //!< the vertices moved to lay them flat
+  //! Whether the faces themselves changed (a vertex merged, split or moved, a face
+  //! removed or turned); dropping unreferenced vertices does not count.
   bool changed_faces() const {
     return merged_duplicate_vertices + merged_close_vertices + removed_degenerate_faces + removed_duplicate_faces +
-               removed_nonmanifold_faces + split_nonmanifold_vertices + flipped_faces + flipped_edges > 0;
+               removed_nonmanifold_faces + split_nonmanifold_vertices + flipped_faces + flipped_edges +
+               moved_vertices > 0;
   }
 };
 
@@ -61,7 +65,8 @@ struct CleanReport {
 //! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
 //! re-oriented consistently within each component, caps (height under 1e-3 of the
 //! longest edge) and single triangles folded back onto their neighbours mended by
-//! flipping an edge (no vertex moves).
+//! flipping an edge, small patches folded back (folded_patches()) laid flat by moving
+//! their vertices (not those on the border).
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
 //!        out-of-range indices, a non-orientable component. `what` is one sentence;
 //!        `source` (a file name) prefixes it.
@@ -96,6 +101,16 @@ std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& mesh);
 //! joined(f, g) holds are in the same component.
 Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::vector<Index>& component,
                       const std::function<bool(Index, Index)>& joined = {});
+
+//! Small patches folded back onto the surface, as a scan's Z-fold leaves them (three
+//! layers, the middle one facing the other way). Triangles form patches across edges
+//! that do not turn back (normals' cosine at least kFoldedBackCos); a patch under 1e-4
+//! of its connected piece's area is folded back, while a sheet with a sharp rim (two
+//! sides alike in area) is not. Sets patch[f] to the number of f's patch, kNone for
+//! other triangles (or leaves `patch` empty), and returns how many there are.
+//! `unit_normals` are the triangles' unit normals.
+Index folded_patches(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
+                     const std::vector<Vec3>& unit_normals, std::vector<Index>& patch);
 
 //! Every triangle split into four at its edges' midpoints (the same surface, four times
 //! the triangles): how the benchmarks and tests make a large mesh of a shared one.

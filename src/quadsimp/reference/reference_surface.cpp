@@ -53,28 +53,17 @@ bool closest_callback(RTCPointQueryFunctionArguments* args) {
   return true;
 }
 
-// Scans fold the odd patch of triangles over onto the surface (a Z-fold: three layers,
-// the middle one facing the other way; the armadillo has 17 single triangles so,
-// glmark2's bunny 2). Such a patch is bounded all round by edges that turn back by
-// more than 120 degrees and is small: under 1e-4 of its connected piece's area. A
-// sheet with a sharp rim (two sides alike in area) is not one. Marked: the patch and
-// every triangle touching it, where the layers meet and the normals point both ways.
+// Scans fold the odd patch of triangles over onto the surface (folded_patches()); clean()
+// lays most flat, and marks here the rest: the patch and every triangle touching it,
+// where the layers meet and the normals point both ways.
 std::vector<char> folded_flaps(const TriMesh& m, const std::vector<std::array<Index, 3>>& adjacency,
-                               const std::vector<Vec3>& normals, const std::vector<double>& area) {
-  constexpr double kFlapShare = 1e-4;
-  const auto joined = [&](Index f, Index g) { return normals[f].dot(normals[g]) >= kFoldedBackCos; };
+                               const std::vector<Vec3>& normals) {
   std::vector<char> flap(normals.size(), 0);
-  bool folds = false;  // most meshes have no edge turning back: no components to find
-  for (Index f = 0; f < m.n_faces() && !folds; ++f)
-    for (Index g : adjacency[f]) folds = folds || (g != kNone && !joined(f, g));
-  if (!folds) return flap;
-  std::vector<Index> piece, patch;
-  const Index pieces = face_components(adjacency, piece), patches = face_components(adjacency, patch, joined);
-  std::vector<double> piece_area(pieces, 0.0), patch_area(patches, 0.0);
-  for (Index f = 0; f < m.n_faces(); ++f) piece_area[piece[f]] += area[f], patch_area[patch[f]] += area[f];
+  std::vector<Index> patch;
+  if (folded_patches(m, adjacency, normals, patch) == 0) return flap;
   std::vector<char> at_flap(m.n_vertices(), 0);
   for (Index f = 0; f < m.n_faces(); ++f)
-    if (patch_area[patch[f]] < kFlapShare * piece_area[piece[f]])
+    if (patch[f] != kNone)
       for (Index v : m.faces[f]) at_flap[v] = 1;
   for (Index f = 0; f < m.n_faces(); ++f)
     for (Index v : m.faces[f]) flap[f] = flap[f] || at_flap[v];
@@ -122,14 +111,12 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   const auto& P = mesh_.positions;
   diagonal_ = qs::bbox_diagonal(P);
   normals_.resize(mesh_.n_faces());
-  std::vector<double> area(mesh_.n_faces());  // twice the area: only compared, for the flaps
   vertex_normals_.assign(mesh_.n_vertices(), Vec3::Zero());
   double edge_sum = 0;
   for (Index f = 0; f < mesh_.n_faces(); ++f) {
     const auto& t = mesh_.faces[f];
     const Vec3 n = mesh_.area_normal(t);
     normals_[f] = n.normalized();
-    area[f] = n.norm();
     for (int k = 0; k < 3; ++k) {
       vertex_normals_[t[k]] += n;
       edge_sum += (P[t[k]] - P[t[(k + 1) % 3]]).norm();
@@ -138,7 +125,7 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   for (Vec3& n : vertex_normals_) n.normalize();
   mean_edge_ = mesh_.n_faces() ? edge_sum / (3.0 * mesh_.n_faces()) : 0.0;
   adjacency_ = triangle_adjacency(mesh_);
-  flap_ = folded_flaps(mesh_, adjacency_, normals_, area);
+  flap_ = folded_flaps(mesh_, adjacency_, normals_);
   border_out_.assign(mesh_.n_vertices(), kNone);
   border_in_.assign(mesh_.n_vertices(), kNone);
   for (Index f = 0; f < mesh_.n_faces(); ++f)
