@@ -385,10 +385,9 @@ TEST(Clean, lays_flat_a_patch_of_several_triangles_folded_back) {
   for (Index v = 0; v < t.n_vertices(); ++v) EXPECT_NEAR((t.positions[v] - grid.positions[v]).norm(), 0, 1e-6 / n);
 }
 
-// The armadillo's one fold that no flip mends is a single triangle, and its neighbour
-// faces away too but joins the surface at under 120 degrees (so it is not part of the
-// patch). With the patch's three corners moved, that neighbour still faces away: the
-// patch stays as it was, and no vertex moves.
+// The armadillo's one fold that no flip mends is a single triangle. With its three
+// corners moved to the means of their neighbours, a neighbour of it turns over instead:
+// the patch stays as it was, and no vertex moves.
 TEST(Clean, leaves_a_folded_patch_that_would_not_lie_flat) {
   const std::string path = shared_dataset("armadillo");
   if (path.empty()) GTEST_SKIP() << "the shared datasets are not beside the project";
