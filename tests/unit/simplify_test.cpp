@@ -418,8 +418,8 @@ TEST(Simplify, a_scan_folded_over_onto_itself_gives_sound_quads) {
 TEST(Simplify, a_scan_folded_over_by_several_triangles_gives_sound_quads) {
   // The same bunny split in four twice *before* cleaning: its fold is a patch of 16
   // triangles, which no edge flip mends, and clean() lays it flat. Without that, the
-  // simplifier's care over folds (over_flap()) left a flipped quad and an edge of 0.18
-  // mu at 20,000 quads on one machine; with it, it ends as the run above does.
+  // simplifier's care over folds (over_flap()) left a flipped quad and homeometry down to
+  // 0.18 at 20,000 quads on one machine; with it, it ends as the run above does.
   const std::string p = "/usr/share/glmark2/models/bunny.obj";
   if (!std::ifstream(p)) GTEST_SKIP() << p << " not installed (glmark2-data)";
   expect_sound_when_split(triangles_of(read_mesh(p)));

@@ -472,7 +472,7 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj) {
 // patch stays as it was, for ReferenceSurface to mark. Border vertices stay. A quad mesh
 // cannot follow a Z-fold, and the simplifier's care over a marked one (over_flap()) is
 // not enough everywhere: on glmark2's bunny split before cleaning it left a flipped quad
-// and an edge of 0.18 mu at 20,000 quads. Returns the vertices moved; `mended` counts
+// and homeometry down to 0.18 at 20,000 quads. Returns the vertices moved; `mended` counts
 // the patches laid flat.
 Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, Index& mended) {
   constexpr int kMaxSweeps = 1000;
