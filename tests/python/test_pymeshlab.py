@@ -281,6 +281,27 @@ def test_a_fin_on_an_edge_is_removed_and_the_surface_kept_whole():
     assert ms.current_mesh().face_number() == len(f)
 
 
+def test_a_patch_folded_back_is_laid_flat(capfd):
+    # A flat grid with five vertices in a column pushed past their neighbours: a strip
+    # of triangles folded back onto it. Loading lays it flat (the log says so), and every
+    # quad of the result faces up, as the grid does.
+    n = 128
+    grid = open_grid(n, bump=0)
+    v = grid.vertex_matrix().copy()
+    for j in range(40, 45):
+        v[j * (n + 1) + 40, 0] += 1.5 / n
+    ms = pymeshlab.MeshSet(verbose=True)
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, face_matrix=grid.face_matrix()), "folded")
+    ms.meshing_quad_mesh_simplification(targetfacenum=1000)
+    assert "1 patches of triangles folded back onto the surface laid flat" in capfd.readouterr().err
+    out = ms.current_mesh()
+    assert is_pure_quad(out)
+    p = out.vertex_matrix()
+    for q in out.polygonal_face_list():
+        a, b, c, d = (p[int(i)] for i in q)
+        assert np.cross(c - a, d - b)[2] > 0
+
+
 def plugin_and_cli(bunny_path, cli, tmp_path, filter_args, cli_args):
     """Quality of the filter's result and stats of the CLI's result, same input and settings."""
     ms = pymeshlab.MeshSet()
