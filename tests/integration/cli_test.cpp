@@ -196,13 +196,10 @@ TEST_F(Cli, a_cap_is_mended_and_reported) {
 }
 
 TEST_F(Cli, a_folded_patch_is_laid_flat_and_reported) {
-  // Five vertices of a grid pushed past their neighbours fold a strip of triangles over
-  // onto it; cleaning moves them back between their neighbours.
-  const int n = 128;
-  TriMesh grid = fixtures::tri_grid(n, n);
-  for (int j = 40; j < 45; ++j) grid.positions[j * (n + 1) + 40].x() += 1.5 / n;
+  // A strip of triangles folded back onto a grid (folded_grid()): cleaning moves the
+  // pushed vertices back between their neighbours, and says so.
   const std::string in = p("folded.ply");
-  write_tri_mesh_ply(in, grid);
+  write_tri_mesh_ply(in, fixtures::folded_grid(128));
   const CliRun r = run("simplify " + in + " " + p("quad.ply") + " --faces 1000");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("folded.ply: 1 patches of triangles folded back onto the surface laid flat"), std::string::npos)

@@ -366,15 +366,14 @@ TEST(Clean, flips_a_single_triangle_folded_back_onto_its_neighbour) {
   expect_edge_manifold_and_oriented(t);
 }
 
-// Five vertices in a column of a flat grid, each pushed one and a half cells past its
-// neighbour: a strip of triangles turns over onto the grid, a Z-fold no one edge flip
-// mends (the simplifier left flipped and folded quads over it). Each vertex of the strip
-// moves to the mean of its neighbours, which puts the pushed ones back where they were.
+// A strip of triangles folded back onto a grid (folded_grid()), a Z-fold no one edge
+// flip mends (the simplifier left flipped and folded quads over it). Each vertex of the
+// strip moves to the mean of its neighbours, which puts the pushed ones back where they
+// were.
 TEST(Clean, lays_flat_a_patch_of_several_triangles_folded_back) {
   const int n = 128;
-  const TriMesh grid = tri_grid(n, n);
-  TriMesh t = grid;
-  for (int j = 40; j < 45; ++j) t.positions[j * (n + 1) + 40].x() += 1.5 / n;
+  TriMesh grid;
+  TriMesh t = folded_grid(n, &grid);
   ASSERT_GT(faces_facing_down(t), 4u);
   const CleanReport r = clean(t);
   EXPECT_EQ(r.unfolded_patches, 1u);
