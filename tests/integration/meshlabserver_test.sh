@@ -8,6 +8,7 @@
 #    uniform mode and in adaptive mode with automatic halting (at two halting shares);
 #  - a point cloud makes the filter fail with our message, without crashing MeshLab;
 #  - a fin on an edge (three triangles on it) is removed, and MeshLab's log says so;
+#  - a strip of triangles folded back onto a grid is laid flat, and the log says so;
 #  - the quads come out as polygonal layers that MeshLab's polygon filters accept;
 #  - MeshLab's own quads (its smart triangle pairing) are simplified.
 # Usage: meshlabserver_test.sh PLUGIN.so QUADSIMP_CLI REPO_DIR DATASETS_DIR
@@ -174,6 +175,38 @@ if server -i "$work/fin.ply" -o "$work/fin_out.ply" -m ff -s "$script"; then
   [ "${faces:-0}" = 1 ] && echo "ok: fin removed, 1 quad" || fail "fin: ${faces:-no} quads, not 1 on the plane"
 else
   fail "meshlabserver failed on the fin"; cat "$work/server.log"
+fi
+
+# A strip of triangles folded back onto a 128 x 128 grid (five vertices in a column
+# pushed one and a half cells past their neighbours): loading lays it flat, the log says
+# so, and no quad of the result is flipped, non-convex or folded over the flat grid.
+python3 - "$work" <<'PY'
+import sys
+n, work = 128, sys.argv[1]
+points = [[i / n, j / n, 0.0] for j in range(n + 1) for i in range(n + 1)]
+faces = []
+for j in range(n):
+    for i in range(n):
+        a, b, c, d = j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1, (j + 1) * (n + 1) + i
+        faces += [(a, b, c), (a, c, d)] if (i + j) % 2 else [(a, b, d), (b, c, d)]
+for name in ("flat", "folded"):
+    with open(f"{work}/{name}.ply", "w") as out:
+        out.write(f"ply\nformat ascii 1.0\nelement vertex {len(points)}\nproperty float x\nproperty float y\n"
+                  f"property float z\nelement face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
+        out.writelines(f"{x!r} {y!r} {z!r}\n" for x, y, z in points)
+        out.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
+    for j in range(40, 45):
+        points[j * (n + 1) + 40][0] += 1.5 / n
+PY
+if server -i "$work/folded.ply" -o "$work/folded_out.ply" -m ff -s "$script"; then
+  grep -q "1 patches of triangles folded back onto the surface laid flat" "$work/server.log" ||
+    { fail "fold: the repair is not in MeshLab's log"; cat "$work/server.log"; }
+  bad=$("$cli" stats "$work/flat.ply" "$work/folded_out.ply" --json --samples 1000 |
+        python3 -c "import json,sys; s=json.load(sys.stdin); print(s['flipped_faces'] + s['nonconvex_faces'] + s['folded_faces'])") ||
+    fail "fold: the result is not a valid pure quad mesh"
+  [ "${bad:-1}" = 0 ] && echo "ok: fold laid flat, every quad sound" || fail "fold: ${bad:-no count of} bad quads"
+else
+  fail "meshlabserver failed on the fold"; cat "$work/server.log"
 fi
 
 # 5. The other three filters, chained on the torus: convert (in place), fitmaps, quality.
