@@ -157,15 +157,21 @@ expect_refusal() {  # name message (the input is $work/NAME.ply)
   if [ "$code" -gt 128 ] && [ "$code" -lt 192 ]; then fail "meshlabserver crashed on $name (exit $code)"; fi
   grep -q "$message" "$work/$name.log" || { fail "no clear message for $name"; cat "$work/$name.log"; }
 }
+# Runs the example script on $work/NAME.ply (to NAME_out.ply) and checks that MeshLab's
+# log reports REPAIR of the input; false if meshlabserver failed.
+simplified_with_repair() {  # name repair
+  if ! server -i "$work/$1.ply" -o "$work/$1_out.ply" -m ff -s "$script"; then
+    fail "meshlabserver failed on $1"; cat "$work/server.log"; return 1
+  fi
+  grep -q "$2" "$work/server.log" || { fail "$1: the repair is not in MeshLab's log"; cat "$work/server.log"; }
+}
 vertices='ply\nformat ascii 1.0\nelement vertex %s\nproperty float x\nproperty float y\nproperty float z\n'
 printf "${vertices}end_header\n0 0 0\n1 0 0\n0 1 0\n" 3 >"$work/cloud.ply"
 expect_refusal cloud "point cloud"
 # Three triangles on one edge: the fin is removed, though it is the largest, the log says
 # so, and the plane's two triangles become one quad.
 printf "${vertices}element face 3\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0.5 0 3\n3 0 1 2\n3 0 1 4\n3 1 0 3\n" 5 >"$work/fin.ply"
-if server -i "$work/fin.ply" -o "$work/fin_out.ply" -m ff -s "$script"; then
-  grep -q "1 faces removed at edges shared by more than two triangles" "$work/server.log" ||
-    { fail "fin: the repair is not in MeshLab's log"; cat "$work/server.log"; }
+if simplified_with_repair fin "1 faces removed at edges shared by more than two triangles"; then
   # One quad, on the plane (measured against the plane alone, not against our own
   # cleaning of the fin): a fin left in the result would lie up to 3 units off it.
   printf "${vertices}element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n3 0 1 2\n3 1 0 3\n" 4 >"$work/plane.ply"
@@ -173,8 +179,6 @@ if server -i "$work/fin.ply" -o "$work/fin_out.ply" -m ff -s "$script"; then
           python3 -c "import json,sys; s=json.load(sys.stdin); print(s['faces'] if s['max_to_ref_e3'] < 1 else 'off the plane')") ||
     fail "fin: the result is not a valid pure quad mesh"
   [ "${faces:-0}" = 1 ] && echo "ok: fin removed, 1 quad" || fail "fin: ${faces:-no} quads, not 1 on the plane"
-else
-  fail "meshlabserver failed on the fin"; cat "$work/server.log"
 fi
 
 # A strip of triangles folded back onto a 128 x 128 grid (five vertices in a column
@@ -198,15 +202,11 @@ for name in ("flat", "folded"):
     for j in range(40, 45):
         points[j * (n + 1) + 40][0] += 1.5 / n
 PY
-if server -i "$work/folded.ply" -o "$work/folded_out.ply" -m ff -s "$script"; then
-  grep -q "1 patches of triangles folded back onto the surface laid flat" "$work/server.log" ||
-    { fail "fold: the repair is not in MeshLab's log"; cat "$work/server.log"; }
+if simplified_with_repair folded "1 patches of triangles folded back onto the surface laid flat"; then
   bad=$("$cli" stats "$work/flat.ply" "$work/folded_out.ply" --json --samples 1000 |
         python3 -c "import json,sys; s=json.load(sys.stdin); print(s['flipped_faces'] + s['nonconvex_faces'] + s['folded_faces'])") ||
     fail "fold: the result is not a valid pure quad mesh"
   [ "${bad:-1}" = 0 ] && echo "ok: fold laid flat, every quad sound" || fail "fold: ${bad:-no count of} bad quads"
-else
-  fail "meshlabserver failed on the fold"; cat "$work/server.log"
 fi
 
 # 5. The other three filters, chained on the torus: convert (in place), fitmaps, quality.
