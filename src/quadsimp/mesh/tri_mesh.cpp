@@ -394,8 +394,8 @@ bool apex_over_middle(const TriMesh& m, const std::array<Index, 3>& t, Index k) 
 // Rounds of independent flips, so that a row of caps is taken from its ends inwards.
 constexpr double kCapThinness = 1e-3;
 
-// `adj` is kept up to date.
-Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj) {
+// `adj` and `normals` (the faces' unit normals) are kept up to date.
+Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj, std::vector<Vec3>& normals) {
   // The longest edge of a cap, kNone for any other triangle.
   const auto cap_edge = [&](Index f, double& thin) {
     Index longest = 0;
@@ -403,9 +403,8 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj) {
     return thin < kCapThinness && apex_over_middle(m, m.faces[f], longest) ? longest : kNone;
   };
   const auto folded = [&](Index f) {
-    const Vec3 n = m.area_normal(m.faces[f]).normalized();
     for (Index g : adj[f])
-      if (g == kNone || n.dot(m.area_normal(m.faces[g]).normalized()) >= kFoldedBackCos) return false;
+      if (g == kNone || normals[f].dot(normals[g]) >= kFoldedBackCos) return false;
     return true;
   };
   std::vector<Index> todo;  // most meshes have neither: nothing more is built for them
@@ -413,9 +412,10 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj) {
   for (Index f = 0; f < m.n_faces(); ++f)
     if (cap_edge(f, thin) != kNone || folded(f)) todo.push_back(f);
   Index flips = 0;
+  bool stale = false;  // flips since `adj` was built
   for (int round = 0; !todo.empty() && round < 64; ++round) {
     CornersAround around;  // built for the first flip tried
-    if (round > 0) adj = adjacency_from(m, around = corners_around(m));
+    if (stale) adj = adjacency_from(m, around = corners_around(m)), stale = false;
     // Flips edge k of f (corners k, k+1) if `better` accepts the new pair; f = (a, b, c)
     // and g = (b, a, o) become (c, a, o) and (c, o, b), oriented alike.
     std::vector<char> touched(m.n_vertices(), 0);
@@ -437,7 +437,10 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj) {
       if (m.area_normal(f2).dot(ng) <= 0 || m.area_normal(g2).dot(ng) <= 0 || !better(f2, g2, tg)) return false;
       m.faces[f] = f2;
       m.faces[g] = g2;
+      normals[f] = m.area_normal(f2).normalized();
+      normals[g] = m.area_normal(g2).normalized();
       touched[a] = touched[b] = touched[c] = touched[o] = 1;
+      stale = true;
       ++flips;
       return true;
     };
@@ -459,7 +462,7 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj) {
     if (flips == flips_before) break;
     todo.swap(left);
   }
-  if (flips) adj = adjacency_from(m, corners_around(m));
+  if (stale) adj = adjacency_from(m, corners_around(m));
   return flips;
 }
 
@@ -474,10 +477,9 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj) {
 // not enough everywhere: on glmark2's bunny split before cleaning it left a flipped quad
 // and homeometry down to 0.18 at 20,000 quads. Returns the vertices moved; `mended` counts
 // the patches laid flat.
-Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, Index& mended) {
+Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
+                     Index& mended) {
   constexpr int kMaxSweeps = 1000;
-  std::vector<Vec3> normals(m.n_faces());
-  for (Index f = 0; f < m.n_faces(); ++f) normals[f] = m.area_normal(m.faces[f]).normalized();
   std::vector<Index> patch;
   const Index patches = folded_patches(m, adj, normals, patch);
   if (patches == 0) return 0;
@@ -718,8 +720,10 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
     orient(m, adj, r, src);
   }
   split_nonmanifold_vertices(m, r);  // faces keep their neighbours
-  r.flipped_edges = mend_by_edge_flips(m, adj);
-  r.moved_vertices = unfold_patches(m, adj, r.unfolded_patches);
+  std::vector<Vec3> normals(m.n_faces());  // unit normals, for both mends
+  for (Index f = 0; f < m.n_faces(); ++f) normals[f] = m.area_normal(m.faces[f]).normalized();
+  r.flipped_edges = mend_by_edge_flips(m, adj, normals);
+  r.moved_vertices = unfold_patches(m, adj, normals, r.unfolded_patches);
   remove_unreferenced(m, r);
   // merged copies are not "unreferenced"
   r.removed_unreferenced_vertices -= r.merged_duplicate_vertices + r.merged_close_vertices;
