@@ -36,7 +36,8 @@ const std::vector<FilterSpec>& filter_specs() {
        "first (duplicate vertices, degenerate and duplicate faces, unreferenced vertices; at an edge with more "
        "than two faces, all but the two across which the surface runs on straightest are removed; "
        "non-manifold vertices split; caps and single triangles folded back onto their neighbours mended by "
-       "flipping an edge), and the log lists each repair. The layer is replaced by its quads."},
+       "flipping an edge; small patches folded back onto the surface laid flat), and the log lists each repair. "
+       "The layer is replaced by its quads."},
       {kFitmaps, "Compute Fitmaps", "compute_scalar_by_fitmap_per_vertex",
        "Computes the <b>S-fitmap</b> (how fast the error of fitting a plane grows with the radius around each "
        "vertex) and the <b>M-fitmap</b> (the largest radius around each vertex where a plane still faces the "
