@@ -466,6 +466,28 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj, std
   return flips;
 }
 
+// Moves each vertex of `vs` to the mean of the other corners of its triangles, sweep
+// after sweep (Gauss-Seidel), until no vertex moves by more than `settled` (or 1,000
+// sweeps).
+void move_to_neighbour_means(TriMesh& m, const CornersAround& around, const std::vector<Index>& vs, double settled) {
+  auto& P = m.positions;
+  for (int sweep = 0; sweep < 1000; ++sweep) {
+    double largest = 0;
+    for (Index v : vs) {
+      Vec3 sum = Vec3::Zero();
+      for (Index i = around.start[v]; i < around.start[v + 1]; ++i) {
+        const auto& t = m.faces[around.corner[i] / 3];
+        const Index k = around.corner[i] % 3;
+        sum += P[t[(k + 1) % 3]] + P[t[(k + 2) % 3]];
+      }
+      const Vec3 mean = sum / double(2 * (around.start[v + 1] - around.start[v]));
+      largest = std::max(largest, (mean - P[v]).squaredNorm());
+      P[v] = mean;
+    }
+    if (largest <= settled * settled) return;
+  }
+}
+
 // A patch of several triangles folded back (glmark2's bunny's fold split in four twice
 // is 16) has no one edge to flip. Its vertices move instead, each to the mean of the
 // other corners of its triangles, in sweeps until they settle: a Tutte embedding of the
@@ -479,7 +501,6 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj, std
 // the patches laid flat.
 Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
                      Index& mended) {
-  constexpr int kMaxSweeps = 1000;
   std::vector<Index> patch;
   const Index patches = folded_patches(m, adj, normals, patch);
   if (patches == 0) return 0;
@@ -516,22 +537,7 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
     if (vs.empty() || facing.isZero()) continue;
     before.clear();
     for (Index v : vs) before.push_back(P[v]);
-    const double settled = 1e-18 * extent * extent;
-    for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
-      double largest = 0;
-      for (Index v : vs) {
-        Vec3 sum = Vec3::Zero();
-        for (Index i = around.start[v]; i < around.start[v + 1]; ++i) {
-          const auto& t = m.faces[around.corner[i] / 3];
-          const Index k = around.corner[i] % 3;
-          sum += P[t[(k + 1) % 3]] + P[t[(k + 2) % 3]];
-        }
-        const Vec3 mean = sum / double(2 * (around.start[v + 1] - around.start[v]));
-        largest = std::max(largest, (mean - P[v]).squaredNorm());
-        P[v] = mean;
-      }
-      if (largest <= settled) break;
-    }
+    move_to_neighbour_means(m, around, vs, 1e-9 * extent);
     const bool flat = std::all_of(region.begin(), region.end(), [&](Index f) {
       const Vec3 n = m.area_normal(m.faces[f]);
       if (!(n.dot(facing) > 0)) return false;
