@@ -169,6 +169,34 @@ TEST(Fitmaps, fast_method_matches_brute_force) {
   EXPECT_LT(median(dm), 0.05);
 }
 
+TEST(Fitmaps, radii_past_a_vertexs_failure_are_skipped_without_changing_anything) {
+  // The fast method leaves out the balls summarise() would not read; with every radius
+  // evaluated exactly it must then give brute force's values to the bit. A flat, bumpy
+  // ellipsoid fails the M test at every radius, soonest near its rim, and the share of
+  // triangles facing against the plane rises and falls with the bumps.
+  TriMesh t = tri_sphere(40, 60);
+  for (Vec3& p : t.positions) {
+    p *= 1 + 0.1 * std::sin(17 * p.x()) * std::cos(13 * p.y());
+    p.z() *= 0.2;
+  }
+  FitmapOptions opt;
+  opt.exact_up_to = 1e9;
+  const Fitmaps fast = compute_fitmaps_unsmoothed(t, opt);
+  std::vector<Index> all(t.n_vertices());
+  for (Index v = 0; v < t.n_vertices(); ++v) all[v] = v;
+  const Fitmaps ref = fitmaps_brute_force(t, all, opt);
+  const std::vector<double> radii = fitmap_radii(t, opt.levels);
+  Index early = 0, earliest = 0;
+  for (Index v = 0; v < t.n_vertices(); ++v) {
+    EXPECT_EQ(fast.s[v], ref.s[v]) << v;
+    EXPECT_EQ(fast.m[v], ref.m[v]) << v;
+    early += fast.m[v] < float(radii[opt.levels - 1]);
+    earliest += fast.m[v] < float(radii[2]);
+  }
+  EXPECT_GT(early, t.n_vertices() / 4);  // these skip at least the largest ball
+  EXPECT_GT(earliest, 0u);               // and these fail before the three radii S needs
+}
+
 TEST(Adaptive, m_fitmap_refuses_collapses_that_grow_faces_past_it) {
   TriMesh t = tri_grid(30, 30, 0.2);
   clean(t);

@@ -319,11 +319,18 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
   tbb::enumerable_thread_specific<Scratch> scratch;
   const auto adj = triangle_adjacency(t);
 
+  // With the local S, summarise() reads no radius past a vertex's first failure of the
+  // M test beyond the first three: those balls, the largest and the costliest, are not
+  // evaluated (1M-triangle mesh: see bench/RESULTS.md).
+  std::vector<char> settled(nv, 0);
+  const auto needed = [&](Index v, Index i) {
+    return inc.vt_start[v] != inc.vt_start[v + 1] && !(opt.local_s && i > 2 && settled[v]);
+  };
   for (Index i = 0; i < nl; ++i) {
     const double r = radii[i];
     if (r <= opt.exact_up_to * radii[0]) {
       tbb::parallel_for(Index(0), nv, [&](Index v) {
-        if (inc.vt_start[v] == inc.vt_start[v + 1]) return;
+        if (!needed(v, i)) return;
         const std::size_t k = std::size_t(v) * nl + i;
         ok[k] = exact_ball(t, inc, tm, v, r, scratch.local(), error[k], frac[k]);
       });
@@ -331,12 +338,16 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
       const CellLevel L = build_cells(t, tm, adj, r / opt.cells_per_radius);
       for (auto& s : scratch) s.mark.clear();
       tbb::parallel_for(Index(0), nv, [&](Index v) {
-        if (inc.vt_start[v] == inc.vt_start[v + 1]) return;
+        if (!needed(v, i)) return;
         const std::size_t k = std::size_t(v) * nl + i;
         const Index start = L.cell_of_triangle[inc.vt[inc.vt_start[v]]];
         ok[k] = cell_ball(L, start, t.positions[v] - centre, r, scratch.local(), error[k], frac[k]);
       });
       for (auto& s : scratch) s.mark.clear();
+    }
+    for (Index v = 0; v < nv; ++v) {
+      const std::size_t k = std::size_t(v) * nl + i;
+      if (ok[k] && frac[k] >= opt.tau) settled[v] = 1;
     }
     if (opt.progress && !opt.progress(float(i + 1) / float(nl), "fitmaps")) throw Cancelled();
   }
