@@ -254,6 +254,9 @@ bool cell_ball(const CellLevel& L, Index start, const Vec3& p, double r, Scratch
   return true;
 }
 
+// F_S takes at least this many radii, even past the first failure of the M test.
+constexpr std::size_t kLeastRadiiForS = 3;
+
 // F_S and F_M from the per-radius errors and fractions of one vertex.
 void summarise(const std::vector<double>& radii, const double* error, const double* frac, const char* ok,
                const FitmapOptions& opt, float& fs, float& fm) {
@@ -268,7 +271,7 @@ void summarise(const std::vector<double>& radii, const double* error, const doub
     }
   }
   if (!opt.local_s) last = radii.size() - 1;
-  last = std::max<std::size_t>(last, std::min<std::size_t>(2, radii.size() - 1));
+  last = std::max<std::size_t>(last, std::min<std::size_t>(kLeastRadiiForS - 1, radii.size() - 1));
   double a = 0;
   if (opt.local_s) {
     // The median over radii of E_i / r_i^2: each radius votes for a, so one large
@@ -320,11 +323,11 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
   const auto adj = triangle_adjacency(t);
 
   // With the local S, summarise() reads no radius past a vertex's first failure of the
-  // M test beyond the first three: those balls, the largest and the costliest, are not
+  // M test beyond the first kLeastRadiiForS: those balls, the largest and the costliest, are not
   // evaluated (1M-triangle mesh: see bench/RESULTS.md).
   std::vector<char> settled(nv, 0);
   const auto needed = [&](Index v, Index i) {
-    return inc.vt_start[v] != inc.vt_start[v + 1] && !(opt.local_s && i > 2 && settled[v]);
+    return inc.vt_start[v] != inc.vt_start[v + 1] && !(opt.local_s && i >= kLeastRadiiForS && settled[v]);
   };
   for (Index i = 0; i < nl; ++i) {
     const double r = radii[i];
