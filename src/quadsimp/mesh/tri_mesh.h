@@ -104,7 +104,7 @@ Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::v
 
 //! Small patches folded back onto the surface, as a scan's Z-fold leaves them (three
 //! layers, the middle one facing the other way). Triangles form patches across edges
-//! that do not turn back (normals' cosine at least kFoldedBackCos); a patch under 1e-3
+//! that do not turn back (normals' cosine at least kFoldedBackCos); a patch under 1e-2
 //! of its connected piece's area is folded back, while a sheet with a sharp rim (two
 //! sides alike in area) is not. Sets patch[f] to the number of f's patch, kNone for
 //! other triangles (or leaves `patch` empty), and returns how many there are.
