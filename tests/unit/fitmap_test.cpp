@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <fstream>
 
+#include <tbb/task_arena.h>
+
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/tri_to_quad.h"
 #include "quadsimp/io/load_input.h"
@@ -120,6 +122,21 @@ TEST(Fitmaps, do_not_depend_on_where_the_mesh_is) {
   const Index c = centre_vertex(t);
   EXPECT_NEAR(b.s[c], a.s[c], 1e-3 * a.s[c]);
   EXPECT_EQ(b.m[c], a.m[c]);
+}
+
+TEST(Fitmaps, do_not_depend_on_the_number_of_threads) {
+  // Each vertex's balls are its own work, with per-thread scratch: one thread and two
+  // must give the same bits, exact and cell levels alike.
+  TriMesh t = tri_sphere(60, 90);
+  for (Vec3& p : t.positions) {
+    p *= 1 + 0.1 * std::sin(17 * p.x()) * std::cos(13 * p.y());
+    p.z() *= 0.2;
+  }
+  Fitmaps one, two;
+  tbb::task_arena(1).execute([&] { one = compute_fitmaps(t); });
+  tbb::task_arena(2).execute([&] { two = compute_fitmaps(t); });
+  EXPECT_EQ(one.s, two.s);
+  EXPECT_EQ(one.m, two.m);
 }
 
 TEST(Fitmaps, cylinder_s_is_lower_than_the_sphere) {
