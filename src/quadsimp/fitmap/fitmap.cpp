@@ -322,9 +322,9 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
   tbb::enumerable_thread_specific<Scratch> scratch;
   const auto adj = triangle_adjacency(t);
 
-  // With the local S, summarise() reads no radius past a vertex's first failure of the
-  // M test beyond the first kLeastRadiiForS: those balls, the largest and the costliest, are not
-  // evaluated (1M-triangle mesh: see bench/RESULTS.md).
+  // With the local S, summarise() reads none of a vertex's radii past its first failure
+  // of the M test but the first kLeastRadiiForS: those balls, the largest and costliest,
+  // are not evaluated (bench/RESULTS.md, "Fitmaps: balls nobody reads").
   std::vector<char> settled(nv, 0);
   const auto needed = [&](Index v, Index i) {
     return inc.vt_start[v] != inc.vt_start[v + 1] && !(opt.local_s && i >= kLeastRadiiForS && settled[v]);

@@ -622,7 +622,7 @@ Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::v
 Index folded_patches(const TriMesh& m, const std::vector<std::array<Index, 3>>& adjacency,
                      const std::vector<Vec3>& normals, std::vector<Index>& patch) {
   // A sheet's two sides are about half of it each. 1e-4 missed five vertices of a
-  // 128 x 128 grid pushed past their neighbours, 1e-3 a column of twelve pushed three
+  // 128 x 128 grid pushed past their neighbours, 1e-3 a column of twelve pushed 3.5
   // cells on a 64 x 64 one (flipped quads followed); the datasets' patches are the same
   // at any share from 1e-4 to 1e-2. A part of the surface is bounded all round by edges
   // turning back only where it lies against the rest, as a fold does.
