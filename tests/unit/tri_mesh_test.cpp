@@ -397,6 +397,24 @@ TEST(Clean, lays_flat_a_patch_of_several_triangles_folded_back) {
   }
 }
 
+// A thin leaf on a stalk, with a knife-sharp rim: its top is bounded all round by edges
+// turning back, and small, like a fold. Laid flat inside the ring of the leaf's underside
+// it would still face up, against that ring: it is put back as it was.
+TEST(Clean, puts_back_the_top_of_a_thin_leaf_found_as_a_patch) {
+  const TriMesh leaf = leaf_on_stalk(0.5);
+  std::vector<Vec3> normals(leaf.n_faces());
+  for (Index f = 0; f < leaf.n_faces(); ++f) normals[f] = leaf.area_normal(leaf.faces[f]).normalized();
+  std::vector<Index> patch;
+  ASSERT_EQ(folded_patches(leaf, triangle_adjacency(leaf), normals, patch, 1e-2), 1u) << "the leaf is no longer tried";
+  TriMesh t = leaf;
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.unfolded_patches, 0u);
+  EXPECT_EQ(r.moved_vertices, 0u);
+  EXPECT_FALSE(r.changed_faces());
+  EXPECT_EQ(t.positions, leaf.positions);
+  EXPECT_EQ(t.faces, leaf.faces);
+}
+
 // The armadillo's one fold that no flip mends is a single triangle. With its three
 // corners moved to the means of their neighbours, a neighbour of it turns over instead:
 // the patch stays as it was, and no vertex moves.
@@ -411,7 +429,7 @@ TEST(Clean, leaves_a_folded_patch_that_would_not_lie_flat) {
   std::vector<Vec3> normals(t.n_faces());
   for (Index f = 0; f < t.n_faces(); ++f) normals[f] = t.area_normal(t.faces[f]).normalized();
   std::vector<Index> patch;
-  ASSERT_EQ(folded_patches(t, triangle_adjacency(t), normals, patch), 1u) << "the case no longer tries a patch";
+  ASSERT_EQ(folded_patches(t, triangle_adjacency(t), normals, patch, 1e-2), 1u) << "the case no longer tries a patch";
   std::set<std::array<double, 3>> input;
   for (const Vec3& x : raw.positions) input.insert({x.x(), x.y(), x.z()});
   for (const Vec3& x : t.positions) ASSERT_TRUE(input.count({x.x(), x.y(), x.z()})) << "a vertex moved";

@@ -502,7 +502,14 @@ void move_to_neighbour_means(TriMesh& m, const CornersAround& around, const std:
 Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
                      Index& mended) {
   std::vector<Index> patch;
-  const Index patches = folded_patches(m, adj, normals, patch);
+  // A sheet's two sides are about half of it each. 1e-4 missed five vertices of a
+  // 128 x 128 grid pushed past their neighbours, 1e-3 a column of twelve pushed 3.5
+  // cells on a 64 x 64 one (flipped quads followed); the datasets' patches are the same
+  // at any share from 1e-4 to 1e-2. The side of a thin part with a sharp rim, a leaf on
+  // a stalk, is a patch too, but laid flat it still faces against its surroundings, and
+  // the check below puts it back.
+  constexpr double kLargestShare = 1e-2;
+  const Index patches = folded_patches(m, adj, normals, patch, kLargestShare);
   if (patches == 0) return 0;
   const CornersAround around = corners_around(m);
   std::vector<char> border(m.n_vertices(), 0);
@@ -620,13 +627,7 @@ Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::v
 }
 
 Index folded_patches(const TriMesh& m, const std::vector<std::array<Index, 3>>& adjacency,
-                     const std::vector<Vec3>& normals, std::vector<Index>& patch) {
-  // A sheet's two sides are about half of it each. 1e-4 missed five vertices of a
-  // 128 x 128 grid pushed past their neighbours, 1e-3 a column of twelve pushed 3.5
-  // cells on a 64 x 64 one (flipped quads followed); the datasets' patches are the same
-  // at any share from 1e-4 to 1e-2. A part of the surface is bounded all round by edges
-  // turning back only where it lies against the rest, as a fold does.
-  constexpr double kPatchShare = 1e-2;
+                     const std::vector<Vec3>& normals, std::vector<Index>& patch, double largest_share) {
   patch.clear();
   const auto joined = [&](Index f, Index g) { return normals[f].dot(normals[g]) >= kFoldedBackCos; };
   bool folds = false;  // most meshes have no edge turning back: no components to find
@@ -644,7 +645,7 @@ Index folded_patches(const TriMesh& m, const std::vector<std::array<Index, 3>>& 
   Index n = 0;
   patch.assign(m.n_faces(), kNone);
   for (Index f = 0; f < m.n_faces(); ++f)
-    if (part_area[part[f]] < kPatchShare * piece_area[piece[f]]) {
+    if (part_area[part[f]] < largest_share * piece_area[piece[f]]) {
       if (number[part[f]] == kNone) number[part[f]] = n++;
       patch[f] = number[part[f]];
     }
