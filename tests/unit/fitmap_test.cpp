@@ -34,6 +34,17 @@ TriMesh height_field(int n, double h, Height z) {
   return t;
 }
 
+// A sphere flattened to a fifth of its height, with bumps: it fails the M test at every
+// radius, soonest near its rim, and no two vertices are alike.
+TriMesh flat_bumpy_ellipsoid(int rings, int segments) {
+  TriMesh t = tri_sphere(rings, segments);
+  for (Vec3& p : t.positions) {
+    p *= 1 + 0.1 * std::sin(17 * p.x()) * std::cos(13 * p.y());
+    p.z() *= 0.2;
+  }
+  return t;
+}
+
 Index centre_vertex(const TriMesh& t) {
   Index best = 0;
   for (Index v = 0; v < t.n_vertices(); ++v)
@@ -127,11 +138,7 @@ TEST(Fitmaps, do_not_depend_on_where_the_mesh_is) {
 TEST(Fitmaps, do_not_depend_on_the_number_of_threads) {
   // Each vertex's balls are its own work, with per-thread scratch: one thread and two
   // must give the same bits, exact and cell levels alike.
-  TriMesh t = tri_sphere(60, 90);
-  for (Vec3& p : t.positions) {
-    p *= 1 + 0.1 * std::sin(17 * p.x()) * std::cos(13 * p.y());
-    p.z() *= 0.2;
-  }
+  const TriMesh t = flat_bumpy_ellipsoid(60, 90);
   Fitmaps one, two;
   tbb::task_arena(1).execute([&] { one = compute_fitmaps(t); });
   tbb::task_arena(2).execute([&] { two = compute_fitmaps(t); });
@@ -188,14 +195,10 @@ TEST(Fitmaps, fast_method_matches_brute_force) {
 
 TEST(Fitmaps, radii_past_a_vertexs_failure_are_skipped_without_changing_anything) {
   // The fast method leaves out the balls summarise() would not read; with every radius
-  // evaluated exactly it must then give brute force's values to the bit. A flat, bumpy
-  // ellipsoid fails the M test at every radius, soonest near its rim, and the share of
-  // triangles facing against the plane rises and falls with the bumps.
-  TriMesh t = tri_sphere(40, 60);
-  for (Vec3& p : t.positions) {
-    p *= 1 + 0.1 * std::sin(17 * p.x()) * std::cos(13 * p.y());
-    p.z() *= 0.2;
-  }
+  // evaluated exactly it must then give brute force's values to the bit. On the flat
+  // ellipsoid the share of triangles facing against the plane rises and falls with the
+  // bumps, so a vertex settled too early would show.
+  const TriMesh t = flat_bumpy_ellipsoid(40, 60);
   FitmapOptions opt;
   opt.exact_up_to = 1e9;
   const Fitmaps fast = compute_fitmaps_unsmoothed(t, opt);
