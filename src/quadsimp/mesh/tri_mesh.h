@@ -106,8 +106,9 @@ Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::v
 //! layers, the middle one facing the other way). Triangles form patches across edges
 //! that do not turn back (normals' cosine at least kFoldedBackCos); a patch under
 //! `largest_share` of its connected piece's area is taken for folded back, while a sheet
-//! with a sharp rim (two sides alike in area) is not. Sets patch[f] to the number of f's patch, kNone for
-//! other triangles (or leaves `patch` empty), and returns how many there are.
+//! with a sharp rim (two sides alike in area) is not. Sets patch[f] to the number of f's
+//! patch, kNone for other triangles (or leaves `patch` empty), and returns how many there
+//! are.
 //! `unit_normals` are the triangles' unit normals.
 Index folded_patches(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
                      const std::vector<Vec3>& unit_normals, std::vector<Index>& patch, double largest_share);
