@@ -402,10 +402,9 @@ TEST(Clean, lays_flat_a_patch_of_several_triangles_folded_back) {
 // it would still face up, against that ring: it is put back as it was.
 TEST(Clean, puts_back_the_top_of_a_thin_leaf_found_as_a_patch) {
   const TriMesh leaf = leaf_on_stalk(0.5);
-  std::vector<Vec3> normals(leaf.n_faces());
-  for (Index f = 0; f < leaf.n_faces(); ++f) normals[f] = leaf.area_normal(leaf.faces[f]).normalized();
   std::vector<Index> patch;
-  ASSERT_EQ(folded_patches(leaf, triangle_adjacency(leaf), normals, patch, 1e-2), 1u) << "the leaf is no longer tried";
+  ASSERT_EQ(folded_patches(leaf, triangle_adjacency(leaf), unit_normals(leaf), patch, kLaidFlatShare), 1u)
+      << "the leaf is no longer tried";
   TriMesh t = leaf;
   const CleanReport r = clean(t);
   EXPECT_EQ(r.unfolded_patches, 0u);
@@ -426,10 +425,9 @@ TEST(Clean, leaves_a_folded_patch_that_would_not_lie_flat) {
   const CleanReport r = clean(t);
   EXPECT_EQ(r.unfolded_patches, 0u);
   EXPECT_EQ(r.moved_vertices, 0u);
-  std::vector<Vec3> normals(t.n_faces());
-  for (Index f = 0; f < t.n_faces(); ++f) normals[f] = t.area_normal(t.faces[f]).normalized();
   std::vector<Index> patch;
-  ASSERT_EQ(folded_patches(t, triangle_adjacency(t), normals, patch, 1e-2), 1u) << "the case no longer tries a patch";
+  ASSERT_EQ(folded_patches(t, triangle_adjacency(t), unit_normals(t), patch, kLaidFlatShare), 1u)
+      << "the case no longer tries a patch";
   std::set<std::array<double, 3>> input;
   for (const Vec3& x : raw.positions) input.insert({x.x(), x.y(), x.z()});
   for (const Vec3& x : t.positions) ASSERT_TRUE(input.count({x.x(), x.y(), x.z()})) << "a vertex moved";

@@ -197,8 +197,7 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
   std::vector<Cand> cand;
   cand.reserve(3 * t.faces.size() / 2);
   const double cos_max = std::cos(opt.max_dihedral_deg * M_PI / 180.0);
-  std::vector<Vec3> normal(t.n_faces());
-  for (Index f = 0; f < t.n_faces(); ++f) normal[f] = t.area_normal(t.faces[f]).normalized();
+  const std::vector<Vec3> normal = unit_normals(t);
   for (Index f = 0; f < t.n_faces(); ++f)
     for (Index k = 0; k < 3; ++k) {
       const Index g = adj[f][k];

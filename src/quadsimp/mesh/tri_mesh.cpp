@@ -508,8 +508,7 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
   // at any share from 1e-4 to 1e-2. The side of a thin part with a sharp rim, a leaf on
   // a stalk, is a patch too, but laid flat it still faces against its surroundings, and
   // the check below puts it back.
-  constexpr double kLargestShare = 1e-2;
-  const Index patches = folded_patches(m, adj, normals, patch, kLargestShare);
+  const Index patches = folded_patches(m, adj, normals, patch, kLaidFlatShare);
   if (patches == 0) return 0;
   const CornersAround around = corners_around(m);
   std::vector<char> border(m.n_vertices(), 0);
@@ -606,6 +605,12 @@ Vec3 working_origin(const std::vector<Vec3>& positions) {
   const auto [lo, hi] = bbox(positions);
   const Vec3 centre = 0.5 * (lo + hi);
   return centre.norm() > (hi - lo).norm() ? centre : Vec3::Zero();
+}
+
+std::vector<Vec3> unit_normals(const TriMesh& m) {
+  std::vector<Vec3> normals(m.n_faces());
+  for (Index f = 0; f < m.n_faces(); ++f) normals[f] = m.area_normal(m.faces[f]).normalized();
+  return normals;
 }
 
 Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::vector<Index>& component,
@@ -729,8 +734,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
     orient(m, adj, r, src);
   }
   split_nonmanifold_vertices(m, r);  // faces keep their neighbours
-  std::vector<Vec3> normals(m.n_faces());  // unit normals, for both mends
-  for (Index f = 0; f < m.n_faces(); ++f) normals[f] = m.area_normal(m.faces[f]).normalized();
+  std::vector<Vec3> normals = unit_normals(m);  // for both mends
   r.flipped_edges = mend_by_edge_flips(m, adj, normals);
   r.moved_vertices = unfold_patches(m, adj, normals, r.unfolded_patches);
   remove_unreferenced(m, r);

@@ -32,7 +32,14 @@ struct TriMesh {
 //! ReferenceSurface marks the patches it could not mend.
 inline constexpr double kFoldedBackCos = -0.5;
 
+//! clean() lays flat the patches folded back that cover under this share of their piece
+//! (folded_patches()); ReferenceSurface marks those it left under a smaller one.
+inline constexpr double kLaidFlatShare = 1e-2;
+
 inline double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
+
+//! The triangles' unit normals.
+std::vector<Vec3> unit_normals(const TriMesh& mesh);
 
 //! What clean() repaired. Every count is also reported through the log function.
 struct CleanReport {

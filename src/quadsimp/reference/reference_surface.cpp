@@ -60,7 +60,7 @@ std::vector<char> folded_flaps(const TriMesh& m, const std::vector<std::array<In
                                const std::vector<Vec3>& normals) {
   std::vector<char> flap(normals.size(), 0);
   std::vector<Index> patch;
-  // Smaller than the patches clean() tries: marked, the top of a leaf on a stalk (1e-2
+  // Under kLaidFlatShare, which clean() tries: marked, the top of a leaf on a stalk (1e-2
   // of its piece, tried and put back) turned 12 of 2,000 quads over it, and on grids
   // folded over 1e-3 to 1e-2 of their area marking changed nothing (clean() laid them
   // flat).
