@@ -197,24 +197,29 @@ TEST(Fitmaps, radii_past_a_vertexs_failure_are_skipped_without_changing_anything
   // The fast method leaves out the balls summarise() would not read; with every radius
   // evaluated exactly it must then give brute force's values to the bit. On the flat
   // ellipsoid the share of triangles facing against the plane rises and falls with the
-  // bumps, so a vertex settled too early would show.
+  // bumps, so a vertex settled too early would show. The paper's S (local_s off) reads
+  // every radius, so nothing may be skipped for it.
   const TriMesh t = flat_bumpy_ellipsoid(40, 60);
-  FitmapOptions opt;
-  opt.exact_up_to = 1e9;
-  const Fitmaps fast = compute_fitmaps_unsmoothed(t, opt);
   std::vector<Index> all(t.n_vertices());
   for (Index v = 0; v < t.n_vertices(); ++v) all[v] = v;
-  const Fitmaps ref = fitmaps_brute_force(t, all, opt);
-  const std::vector<double> radii = fitmap_radii(t, opt.levels);
-  Index early = 0, earliest = 0;
-  for (Index v = 0; v < t.n_vertices(); ++v) {
-    EXPECT_EQ(fast.s[v], ref.s[v]) << v;
-    EXPECT_EQ(fast.m[v], ref.m[v]) << v;
-    early += fast.m[v] < float(radii[opt.levels - 1]);
-    earliest += fast.m[v] < float(radii[2]);
+  for (bool local_s : {true, false}) {
+    SCOPED_TRACE(local_s);
+    FitmapOptions opt;
+    opt.exact_up_to = 1e9;
+    opt.local_s = local_s;
+    const Fitmaps fast = compute_fitmaps_unsmoothed(t, opt);
+    const Fitmaps ref = fitmaps_brute_force(t, all, opt);
+    const std::vector<double> radii = fitmap_radii(t, opt.levels);
+    Index early = 0, earliest = 0;
+    for (Index v = 0; v < t.n_vertices(); ++v) {
+      EXPECT_EQ(fast.s[v], ref.s[v]) << v;
+      EXPECT_EQ(fast.m[v], ref.m[v]) << v;
+      early += fast.m[v] < float(radii[opt.levels - 1]);
+      earliest += fast.m[v] < float(radii[2]);
+    }
+    EXPECT_GT(early, t.n_vertices() / 4);  // these fail before the largest ball
+    EXPECT_GT(earliest, 0u);               // and these before the three radii S needs
   }
-  EXPECT_GT(early, t.n_vertices() / 4);  // these skip at least the largest ball
-  EXPECT_GT(earliest, 0u);               // and these fail before the three radii S needs
 }
 
 TEST(Adaptive, m_fitmap_refuses_collapses_that_grow_faces_past_it) {

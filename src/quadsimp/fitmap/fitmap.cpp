@@ -325,9 +325,9 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
   // With the local S, summarise() reads none of a vertex's radii past its first failure
   // of the M test but the first kLeastRadiiForS: those balls, the largest and costliest,
   // are not evaluated (bench/RESULTS.md, "Fitmaps: balls nobody reads").
-  std::vector<char> settled(nv, 0);
+  std::vector<char> settled(nv, 0);  // stays 0 without the local S
   const auto needed = [&](Index v, Index i) {
-    return inc.vt_start[v] != inc.vt_start[v + 1] && !(opt.local_s && i >= kLeastRadiiForS && settled[v]);
+    return inc.vt_start[v] != inc.vt_start[v + 1] && !(i >= kLeastRadiiForS && settled[v]);
   };
   for (Index i = 0; i < nl; ++i) {
     const double r = radii[i];
@@ -348,7 +348,7 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
       });
       for (auto& s : scratch) s.mark.clear();
     }
-    for (Index v = 0; v < nv; ++v) {
+    for (Index v = 0; v < nv && opt.local_s; ++v) {
       const std::size_t k = std::size_t(v) * nl + i;
       if (ok[k] && frac[k] >= opt.tau) settled[v] = 1;
     }
