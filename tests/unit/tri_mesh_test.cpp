@@ -414,6 +414,24 @@ TEST(Clean, puts_back_the_top_of_a_thin_leaf_found_as_a_patch) {
   EXPECT_EQ(t.faces, leaf.faces);
 }
 
+// A post whose wall leans out by 40 degrees (a dovetail): the wall is bounded all round
+// by edges turning by 130 degrees, past kFoldedBackCos, like a fold's middle layer, and
+// faces down against the disc and the post's head. Laid flat, it fails the checks that
+// follow and is put back. The head is a patch too, with only the wall around it: nothing
+// to lay it flat against.
+TEST(Clean, puts_back_an_undercut_wall_found_as_a_patch) {
+  const TriMesh post = post_with_undercut(40);
+  std::vector<Index> patch;
+  ASSERT_EQ(folded_patches(post, triangle_adjacency(post), unit_normals(post), patch, kLaidFlatShare), 2u)
+      << "the wall is no longer tried";
+  TriMesh t = post;
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.unfolded_patches, 0u);
+  EXPECT_EQ(r.moved_vertices, 0u);
+  EXPECT_EQ(t.positions, post.positions);
+  EXPECT_EQ(t.faces, post.faces);
+}
+
 // The armadillo's one fold that no flip mends is a single triangle. With its three
 // corners moved to the means of their neighbours, a neighbour of it turns over instead:
 // the patch stays as it was, and no vertex moves.
