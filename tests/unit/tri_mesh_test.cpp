@@ -397,40 +397,33 @@ TEST(Clean, lays_flat_a_patch_of_several_triangles_folded_back) {
   }
 }
 
-// A thin leaf on a stalk, with a knife-sharp rim: its top is bounded all round by edges
-// turning back, and small, like a fold. Laid flat inside the ring of the leaf's underside
-// it would still face up, against that ring: it is put back as it was.
-TEST(Clean, puts_back_the_top_of_a_thin_leaf_found_as_a_patch) {
-  const TriMesh leaf = leaf_on_stalk(0.5);
+namespace {
+// `patches` patches are tried (folded_patches()), and clean() puts each back as it was.
+void expect_tried_and_put_back(const TriMesh& mesh, Index patches) {
   std::vector<Index> patch;
-  ASSERT_EQ(folded_patches(leaf, triangle_adjacency(leaf), unit_normals(leaf), patch, kLaidFlatShare), 1u)
-      << "the leaf is no longer tried";
-  TriMesh t = leaf;
+  ASSERT_EQ(folded_patches(mesh, triangle_adjacency(mesh), unit_normals(mesh), patch, kLaidFlatShare), patches)
+      << "the case is no longer tried";
+  TriMesh t = mesh;
   const CleanReport r = clean(t);
   EXPECT_EQ(r.unfolded_patches, 0u);
   EXPECT_EQ(r.moved_vertices, 0u);
   EXPECT_FALSE(r.changed_faces());
-  EXPECT_EQ(t.positions, leaf.positions);
-  EXPECT_EQ(t.faces, leaf.faces);
+  EXPECT_EQ(t.positions, mesh.positions);
+  EXPECT_EQ(t.faces, mesh.faces);
 }
+}  // namespace
+
+// A thin leaf on a stalk, with a knife-sharp rim: its top is bounded all round by edges
+// turning back, and small, like a fold. Laid flat inside the ring of the leaf's underside
+// it would still face up, against that ring: it is put back as it was.
+TEST(Clean, puts_back_the_top_of_a_thin_leaf_found_as_a_patch) { expect_tried_and_put_back(leaf_on_stalk(0.5), 1); }
 
 // A post whose wall leans out by 40 degrees (a dovetail): the wall is bounded all round
 // by edges turning by 130 degrees, past kFoldedBackCos, like a fold's middle layer, and
 // faces down against the disc and the post's head. Laid flat, it fails the checks that
 // follow and is put back. The head is a patch too, with only the wall around it: nothing
 // to lay it flat against.
-TEST(Clean, puts_back_an_undercut_wall_found_as_a_patch) {
-  const TriMesh post = post_with_undercut(40);
-  std::vector<Index> patch;
-  ASSERT_EQ(folded_patches(post, triangle_adjacency(post), unit_normals(post), patch, kLaidFlatShare), 2u)
-      << "the wall is no longer tried";
-  TriMesh t = post;
-  const CleanReport r = clean(t);
-  EXPECT_EQ(r.unfolded_patches, 0u);
-  EXPECT_EQ(r.moved_vertices, 0u);
-  EXPECT_EQ(t.positions, post.positions);
-  EXPECT_EQ(t.faces, post.faces);
-}
+TEST(Clean, puts_back_an_undercut_wall_found_as_a_patch) { expect_tried_and_put_back(post_with_undercut(40), 2); }
 
 // The armadillo's one fold that no flip mends is a single triangle. With its three
 // corners moved to the means of their neighbours, a neighbour of it turns over instead:
