@@ -416,14 +416,18 @@ void expect_tried_and_put_back(const TriMesh& mesh, Index patches) {
 // A thin leaf on a stalk, with a knife-sharp rim: its top is bounded all round by edges
 // turning back, and small, like a fold. Laid flat inside the ring of the leaf's underside
 // it would still face up, against that ring: it is put back as it was.
-TEST(Clean, puts_back_the_top_of_a_thin_leaf_found_as_a_patch) { expect_tried_and_put_back(leaf_on_stalk(0.5), 1); }
+TEST(Clean, puts_back_the_top_of_a_thin_leaf_found_as_a_patch) {
+  expect_tried_and_put_back(leaf_on_stalk(0.5), 1);
+}
 
 // A post whose wall leans out by 40 degrees (a dovetail): the wall is bounded all round
 // by edges turning by 130 degrees, past kFoldedBackCos, like a fold's middle layer, and
 // faces down against the disc and the post's head. Laid flat, it fails the checks that
 // follow and is put back. The head is a patch too, with only the wall around it: nothing
 // to lay it flat against.
-TEST(Clean, puts_back_an_undercut_wall_found_as_a_patch) { expect_tried_and_put_back(post_with_undercut(40), 2); }
+TEST(Clean, puts_back_an_undercut_wall_found_as_a_patch) {
+  expect_tried_and_put_back(post_with_undercut(40), 2);
+}
 
 // The armadillo's one fold that no flip mends is a single triangle. With its three
 // corners moved to the means of their neighbours, a neighbour of it turns over instead:
