@@ -282,20 +282,34 @@ SurfacePoint ReferenceSurface::project_near(Index start, const Vec3& p, const Ve
   return project(p, dir, max_dist);
 }
 
-SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, double reach) const {
+SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, double reach, const BorderArc& arc) const {
   SurfacePoint best;
   if (start >= mesh_.n_faces()) return best;
-  Index first = kNone;  // a border edge at a corner of `start`
-  for (Index v : mesh_.faces[start])
-    if (border_out_[v] != kNone) first = border_out_[v];
-  if (first == kNone) return best;
   const auto& P = mesh_.positions;
   auto corner = [&](Index e, Index i) { return mesh_.faces[e / 3][(e % 3 + i) % 3]; };
-  auto visit = [&](Index e) {  // closest point of border edge e; returns its length
+  // Where x lies on border edge e, from 0 at its start to 1 at its end; -1 off it.
+  const double on_edge = 1e-9 * mean_edge_;
+  auto where_on = [&](Index e, const Vec3& x) {
+    const Vec3& a = P[corner(e, 0)];
+    const Vec3 ab = P[corner(e, 1)] - a;
+    const double len2 = ab.squaredNorm();
+    const double s = len2 > 0 ? std::clamp((x - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    return (a + s * ab - x).norm() <= on_edge ? s : -1.0;
+  };
+  // The walk starts at the border edge under arc.from, or at any border edge at a
+  // corner of `start`.
+  Index first = kNone;
+  for (Index v : mesh_.faces[start])
+    for (Index e : {border_out_[v], border_in_[v]})
+      if (e != kNone && (first == kNone || where_on(e, arc.from) >= 0)) first = e;
+  if (first == kNone) return best;
+  // The closest point of border edge e between lo and hi (as where_on() measures);
+  // returns the edge's length.
+  auto visit = [&](Index e, double lo, double hi) {
     const Vec3 &a = P[corner(e, 0)], &b = P[corner(e, 1)];
     const Vec3 ab = b - a;
     const double len2 = ab.squaredNorm();
-    const double s = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    const double s = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, lo, std::max(lo, hi)) : lo;
     const Vec3 x = a + s * ab;
     const double d = (x - p).norm();
     if (!best.found() || d < best.distance) {
@@ -306,17 +320,22 @@ SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, dou
     }
     return std::sqrt(len2);
   };
-  // Forward from `first` (each edge's end starts the next), then backward (each edge's
-  // start ends the previous); each stops at `reach`, after kMaxEdges edges (a guard) or
-  // where a closed loop comes back to `first`.
+  // Forward from `first` (each edge's end starts the next) up to arc.ahead, then
+  // backward (each edge's start ends the previous) up to arc.behind; each also stops at
+  // `reach`, after kMaxEdges edges (a guard) or where a closed loop comes back to `first`.
   constexpr int kMaxEdges = 256;
-  const double first_length = visit(first);
+  const double ahead = where_on(first, arc.ahead), behind = where_on(first, arc.behind);
+  const double first_length = visit(first, std::max(0.0, behind), ahead >= 0 ? ahead : 1.0);
   for (const bool forward : {true, false}) {
+    if ((forward ? ahead : behind) >= 0) continue;  // the arc ends on `first`
     auto step = [&](Index e) { return forward ? border_out_[corner(e, 1)] : border_in_[corner(e, 0)]; };
     double walked = first_length;
     int steps = 0;
-    for (Index e = step(first); e != kNone && e != first && walked < reach && steps < kMaxEdges; e = step(e), ++steps)
-      walked += visit(e);
+    for (Index e = step(first); e != kNone && e != first && walked < reach && steps < kMaxEdges; e = step(e), ++steps) {
+      const double end = where_on(e, forward ? arc.ahead : arc.behind);
+      walked += forward ? visit(e, 0.0, end >= 0 ? end : 1.0) : visit(e, std::max(0.0, end), 1.0);
+      if (end >= 0) break;
+    }
   }
   return best;
 }

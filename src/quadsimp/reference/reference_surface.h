@@ -65,12 +65,19 @@ class ReferenceSurface {
   //! nearest corner as hint, tight when the corners lie on M0.
   SurfacePoint closest_to_quad_centre(const Vec3* q) const;
 
-  //! Closest point to p on M0's border, searched along the border within `reach`
-  //! (length along the border) of the border corners of triangle `start`; not found
-  //! when `start` touches no border. Border vertices slide along the border with it:
-  //! the closest point on the whole surface leaves the border wherever the border
-  //! bends out of its tangent plane.
-  SurfacePoint closest_on_border(Index start, const Vec3& p, double reach) const;
+  //! Where a point on M0's border may slide: from `from`, forward (the way the
+  //! triangles' border edges run) up to `ahead` and backward up to `behind`. An end on
+  //! no border edge bounds nothing.
+  struct BorderArc {
+    Vec3 from, ahead, behind;
+  };
+  //! Closest point to p on M0's border, searched along the border from the border edge
+  //! under arc.from (one at a corner of triangle `start`) within `reach` (length along
+  //! the border) and within the arc; not found when `start` touches no border. Border
+  //! vertices slide along the border with it, between their border neighbours: the
+  //! closest point on the whole surface leaves the border wherever the border bends out
+  //! of its tangent plane, and one found past a neighbour reverses the border's order.
+  SurfacePoint closest_on_border(Index start, const Vec3& p, double reach, const BorderArc& arc) const;
 
   //! Linear interpolation of a per-vertex field at a surface point.
   double interpolate(const std::vector<float>& field, const SurfacePoint& s) const;
