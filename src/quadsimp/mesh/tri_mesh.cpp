@@ -508,7 +508,7 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
   // at any share from 1e-4 to 1e-2. The side of a thin part with a sharp rim, a leaf on
   // a stalk, is a patch too, but laid flat it still faces against its surroundings, and
   // the check below puts it back.
-  const Index patches = folded_patches(m, adj, normals, patch, kLaidFlatShare);
+  const Index patches = folded_patches(m, adj, normals, patch, kLaidFlatShare, kLaidFlatCos);
   if (patches == 0) return 0;
   const CornersAround around = corners_around(m);
   std::vector<char> border(m.n_vertices(), 0);
@@ -632,9 +632,10 @@ Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::v
 }
 
 Index folded_patches(const TriMesh& m, const std::vector<std::array<Index, 3>>& adjacency,
-                     const std::vector<Vec3>& normals, std::vector<Index>& patch, double largest_share) {
+                     const std::vector<Vec3>& normals, std::vector<Index>& patch, double largest_share,
+                     double turned_cos) {
   patch.clear();
-  const auto joined = [&](Index f, Index g) { return normals[f].dot(normals[g]) >= kFoldedBackCos; };
+  const auto joined = [&](Index f, Index g) { return normals[f].dot(normals[g]) >= turned_cos; };
   bool folds = false;  // most meshes have no edge turning back: no components to find
   for (Index f = 0; f < m.n_faces() && !folds; ++f)
     for (Index g : adjacency[f]) folds = folds || (g != kNone && !joined(f, g));

@@ -28,13 +28,19 @@ struct TriMesh {
 
 //! Neighbouring triangles whose normals' cosine is under this are turned back onto each
 //! other (by over 120 degrees): clean() mends a single triangle so turned against all its
-//! neighbours and small patches bounded by such edges (folded_patches()), and
-//! ReferenceSurface marks the patches it could not mend.
+//! neighbours, and ReferenceSurface marks the small patches bounded by such edges
+//! (folded_patches()) that clean() could not lay flat.
 inline constexpr double kFoldedBackCos = -0.5;
 
 //! clean() lays flat the patches folded back that cover under this share of their piece
 //! (folded_patches()); ReferenceSurface marks those it left under a smaller one.
 inline constexpr double kLaidFlatShare = 1e-2;
+
+//! The patches clean() tries to lay flat are bounded by edges turning by over about 101.5
+//! degrees, less than kFoldedBackCos asks: where a fold's layers meet the surface at a
+//! slant, its ends turn by as little as 108 degrees (a column of a wave grid pushed past
+//! its neighbours). ReferenceSurface's marking keeps kFoldedBackCos.
+inline constexpr double kLaidFlatCos = -0.2;
 
 inline double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
 
@@ -111,14 +117,15 @@ Index face_components(const std::vector<std::array<Index, 3>>& adjacency, std::v
 
 //! Small patches folded back onto the surface, as a scan's Z-fold leaves them (three
 //! layers, the middle one facing the other way). Triangles form patches across edges
-//! that do not turn back (normals' cosine at least kFoldedBackCos); a patch under
+//! that do not turn back (normals' cosine at least `turned_cos`); a patch under
 //! `largest_share` of its connected piece's area is taken for folded back, while a sheet
 //! with a sharp rim (two sides alike in area) is not. Sets patch[f] to the number of f's
 //! patch, kNone for other triangles (or leaves `patch` empty), and returns how many there
 //! are.
 //! `unit_normals` are the triangles' unit normals.
 Index folded_patches(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
-                     const std::vector<Vec3>& unit_normals, std::vector<Index>& patch, double largest_share);
+                     const std::vector<Vec3>& unit_normals, std::vector<Index>& patch, double largest_share,
+                     double turned_cos);
 
 //! Every triangle split into four at its edges' midpoints (the same surface, four times
 //! the triangles): how the benchmarks and tests make a large mesh of a shared one.

@@ -65,7 +65,7 @@ std::vector<char> folded_flaps(const TriMesh& m, const std::vector<std::array<In
   // folded over 1e-3 to 1e-2 of their area marking changed nothing (clean() laid them
   // flat).
   constexpr double kLargestShare = 1e-3;
-  if (folded_patches(m, adjacency, normals, patch, kLargestShare) == 0) return flap;
+  if (folded_patches(m, adjacency, normals, patch, kLargestShare, kFoldedBackCos) == 0) return flap;
   std::vector<char> at_flap(m.n_vertices(), 0);
   for (Index f = 0; f < m.n_faces(); ++f)
     if (patch[f] != kNone)
