@@ -287,14 +287,20 @@ SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, dou
   if (start >= mesh_.n_faces()) return best;
   const auto& P = mesh_.positions;
   auto corner = [&](Index e, Index i) { return mesh_.faces[e / 3][(e % 3 + i) % 3]; };
-  // Where x lies on border edge e, from 0 at its start to 1 at its end; -1 off it.
-  const double on_edge = 1e-9 * mean_edge_;
-  auto where_on = [&](Index e, const Vec3& x) {
+  // Border edge e's points by their parameter s, 0 at its start and 1 at its end:
+  // nearest() gives the one nearest x, point_at() the one at s, and where_on() where x
+  // lies on e (-1 off it).
+  auto nearest = [&](Index e, const Vec3& x) {
     const Vec3& a = P[corner(e, 0)];
     const Vec3 ab = P[corner(e, 1)] - a;
     const double len2 = ab.squaredNorm();
-    const double s = len2 > 0 ? std::clamp((x - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    return (a + s * ab - x).norm() <= on_edge ? s : -1.0;
+    return len2 > 0 ? std::clamp((x - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  };
+  auto point_at = [&](Index e, double s) { return Vec3(P[corner(e, 0)] + s * (P[corner(e, 1)] - P[corner(e, 0)])); };
+  const double on_edge = 1e-9 * mean_edge_;
+  auto where_on = [&](Index e, const Vec3& x) {
+    const double s = nearest(e, x);
+    return (point_at(e, s) - x).norm() <= on_edge ? s : -1.0;
   };
   // The walk starts at the border edge under arc.from, or at any border edge at a
   // corner of `start`.
@@ -306,11 +312,8 @@ SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, dou
   // The closest point of border edge e between lo and hi (as where_on() measures);
   // returns the edge's length.
   auto visit = [&](Index e, double lo, double hi) {
-    const Vec3 &a = P[corner(e, 0)], &b = P[corner(e, 1)];
-    const Vec3 ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double s = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, lo, std::max(lo, hi)) : lo;
-    const Vec3 x = a + s * ab;
+    const double s = std::clamp(nearest(e, p), lo, std::max(lo, hi));
+    const Vec3 x = point_at(e, s);
     const double d = (x - p).norm();
     if (!best.found() || d < best.distance) {
       double w[3] = {0, 0, 0};
@@ -318,7 +321,7 @@ SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, dou
       w[(e % 3 + 1) % 3] = s;
       best = SurfacePoint{e / 3, w[1], w[2], x, d};
     }
-    return std::sqrt(len2);
+    return (P[corner(e, 1)] - P[corner(e, 0)]).norm();
   };
   // Forward from `first` (each edge's end starts the next) up to arc.ahead, then
   // backward (each edge's start ends the previous) up to arc.behind; each also stops at
