@@ -57,6 +57,11 @@ void Simplifier::smooth_vertex(Index v) {
     spring(dg, kSqrt2 * rest_length(v, id), 1.0);
   });
   Vec3 step, n = Vec3::Zero();
+  // A border vertex slides along M0's border no further than its border neighbours.
+  // Sliding past one, across a crack of bunny.ply, reversed the border's order there at
+  // 8 of 38 counts from 1.5K to 20K quads, and left a quad stretched over the hole:
+  // non-convex, flipped or folded at 2 of them, with homeometry under 0.3 at 5 more.
+  ReferenceSurface::BorderArc arc;
   if (border) {
     // The same springs (the border edges, in one face only, get their other half), and
     // the step along the border only. Springs to the two border neighbours alone left
@@ -68,6 +73,7 @@ void Simplifier::smooth_vertex(Index v) {
     spring(b, rest_length(v, ib), 0.5);
     const Vec3 t = (b - a).normalized();
     step = (sum / w - p).dot(t) * t;
+    arc = {p, a, b};
   } else {
     n = area_normal.normalized();
     const Vec3 d = sum / w - p;
@@ -83,11 +89,6 @@ void Simplifier::smooth_vertex(Index v) {
     const Vec3 target = p + scale * step;
     SurfacePoint foot;
     if (border) {
-      // Not past a border neighbour. Sliding past one, across a crack of bunny.ply,
-      // reversed the border's order there at 8 of 38 counts from 1.5K to 20K quads, and
-      // left a quad stretched over the hole: non-convex, flipped or folded at 2 of them,
-      // with homeometry under 0.3 at 5 more.
-      const ReferenceSurface::BorderArc arc{p, m_.position(m_.to(m_.out(v))), m_.position(m_.from(m_.border_in(v)))};
       foot = ref_.closest_on_border(foot_face_[v], target, 4 * mu_, arc);
       if (!foot.found()) foot = ref_.closest(target, 2 * mu_);
     } else {
