@@ -50,12 +50,11 @@ double nearest_vertex_distance(const QuadMesh& m, const Vec3& p) {
 // up to that loop's length exactly when the order is kept.
 Index border_loops_out_of_order(const QuadMesh& q, const ReferenceSurface& ref) {
   const TriMesh& t = ref.mesh();
-  std::set<std::pair<Index, Index>> edges;
-  for (const auto& f : t.faces)
-    for (int k = 0; k < 3; ++k) edges.insert({f[k], f[(k + 1) % 3]});
-  std::vector<Index> next(t.positions.size(), kNone);
-  for (const auto& [a, b] : edges)
-    if (!edges.count({b, a})) next[a] = b;
+  const auto adjacency = triangle_adjacency(t);
+  std::vector<Index> next(t.positions.size(), kNone);  // along M0's border edges
+  for (Index f = 0; f < t.n_faces(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (adjacency[f][k] == kNone) next[t.faces[f][k]] = t.faces[f][(k + 1) % 3];
   struct Segment {
     Index loop;
     double start;  // length along the loop at the segment's first end
