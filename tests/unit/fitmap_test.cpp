@@ -222,6 +222,25 @@ TEST(Fitmaps, radii_past_a_vertexs_failure_are_skipped_without_changing_anything
   }
 }
 
+TEST(Fitmaps, vertices_sharing_a_cell_search_get_their_own_balls) {
+  // The vertices that start from one cell share the cells every one of their balls
+  // holds; each must still get its own ball. The sums are added in another order, so
+  // the values may differ in their last bits only. On the flat ellipsoid the share of
+  // triangles facing against the plane rises and falls with the bumps, so a ball
+  // holding one cell too many or too few shows in M as well as in S.
+  const TriMesh t = flat_bumpy_ellipsoid(120, 180);
+  FitmapOptions each;
+  each.share_cell_searches = false;
+  const Fitmaps shared = compute_fitmaps_unsmoothed(t), own = compute_fitmaps_unsmoothed(t, each);
+  Index differ = 0;
+  for (Index v = 0; v < t.n_vertices(); ++v) {
+    EXPECT_NEAR(shared.s[v], own.s[v], 1e-6 * own.s[v]) << v;
+    EXPECT_EQ(shared.m[v], own.m[v]) << v;
+    differ += shared.s[v] != own.s[v];
+  }
+  EXPECT_LT(differ, t.n_vertices() / 100);
+}
+
 TEST(Adaptive, m_fitmap_refuses_collapses_that_grow_faces_past_it) {
   TriMesh t = tri_grid(30, 30, 0.2);
   clean(t);

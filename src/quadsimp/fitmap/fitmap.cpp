@@ -123,9 +123,19 @@ struct Incidence {
   }
 };
 
+// What the inconsistent area of a cell needs, packed: each point's count reads every
+// cell of the shared inner part, and L's full moments are three times as wide.
+struct Facing {
+  Vec3 normal;
+  double area, against;
+};
+
 struct Scratch {
   std::vector<Index> mark, queue, tris;
   Index stamp = 0;
+  std::vector<Index> inner_mark, inner, rim;  // cell_balls()' part shared by its points
+  Index inner_stamp = 0;
+  std::vector<Facing> inner_facing;
 };
 
 // Plane-fit error and inconsistent-area fraction of the connected ball (p, r), on the
@@ -223,35 +233,86 @@ CellLevel build_cells(const TriMesh& t, const std::vector<Moments>& tm,
   return L;
 }
 
-bool cell_ball(const CellLevel& L, Index start, const Vec3& p, double r, Scratch& s, double& error, double& frac) {
-  if (s.mark.size() < L.moments.size()) s.mark.assign(L.moments.size(), 0);
-  const Index stamp = ++s.stamp;
-  const double r2 = r * r;
-  s.queue.clear();
-  s.queue.push_back(start);
-  s.mark[start] = stamp;
-  Moments sum;
-  for (std::size_t i = 0; i < s.queue.size(); ++i) {
-    const Index c = s.queue[i];
-    sum.add(L.moments[c]);
+// The cell balls of radius r around several points that all start from one cell. Every
+// cell within r - spread of the points' mean, and connected to the start through such
+// cells, lies in each point's ball and is reached by its search. That inner part is
+// gathered and summed once; each point's search only grows it from its rim. The cells
+// are the same as a search per point; at the largest radii hundreds of vertices share a
+// start cell (bench/RESULTS.md, "Fitmaps: one search per cell").
+// store(m, ok, error, frac) receives the m-th point's result.
+template <class Store>
+void cell_balls(const CellLevel& L, Index start, const Index* members, std::size_t n, const TriMesh& t,
+                const Vec3& centre, double r, Scratch& s, const Store& store) {
+  if (s.mark.size() < L.moments.size()) {
+    s.mark.assign(L.moments.size(), 0);
+    s.inner_mark.assign(L.moments.size(), 0);
+  }
+  Vec3 mean = Vec3::Zero();
+  for (std::size_t j = 0; j < n; ++j) mean += t.positions[members[j]] - centre;
+  mean /= double(n);
+  double spread = 0;
+  for (std::size_t j = 0; j < n; ++j) spread = std::max(spread, (t.positions[members[j]] - centre - mean).norm());
+  const double ri = std::max(r - spread, 0.0), r2 = r * r;
+
+  const Index inner = ++s.inner_stamp;
+  s.inner.clear();
+  s.inner.push_back(start);
+  s.inner_mark[start] = inner;
+  Moments inner_sum;
+  for (std::size_t i = 0; i < s.inner.size(); ++i) {
+    const Index c = s.inner[i];
+    inner_sum.add(L.moments[c]);
     for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
       const Index x = L.adj[j];
-      if (s.mark[x] != stamp && (L.centre[x] - p).squaredNorm() < r2) {
-        s.mark[x] = stamp;
-        s.queue.push_back(x);
+      if (s.inner_mark[x] != inner && (L.centre[x] - mean).squaredNorm() < ri * ri) {
+        s.inner_mark[x] = inner;
+        s.inner.push_back(x);
       }
     }
   }
-  const Fit fit = fit_plane(sum);
-  if (!fit.ok) return false;
-  double bad = 0;
-  for (Index c : s.queue) {
-    const bool cell_against = L.moments[c].normal.dot(fit.normal) <= 0;
-    bad += cell_against ? L.moments[c].area - L.against[c] : L.against[c];
+  s.rim.clear();
+  s.inner_facing.clear();
+  for (Index c : s.inner) s.inner_facing.push_back({L.moments[c].normal, L.moments[c].area, L.against[c]});
+  for (Index c : s.inner)
+    for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j)
+      if (s.inner_mark[L.adj[j]] != inner) {
+        s.rim.push_back(c);
+        break;
+      }
+
+  for (std::size_t m = 0; m < n; ++m) {
+    const Vec3 p = t.positions[members[m]] - centre;
+    const Index stamp = ++s.stamp;
+    Moments sum = inner_sum;
+    s.queue.assign(s.rim.begin(), s.rim.end());
+    const std::size_t grown = s.queue.size();  // cells from here on are outside the inner part
+    for (std::size_t i = 0; i < s.queue.size(); ++i) {
+      const Index c = s.queue[i];
+      if (i >= grown) sum.add(L.moments[c]);
+      for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
+        const Index x = L.adj[j];
+        if (s.inner_mark[x] != inner && s.mark[x] != stamp && (L.centre[x] - p).squaredNorm() < r2) {
+          s.mark[x] = stamp;
+          s.queue.push_back(x);
+        }
+      }
+    }
+    const Fit fit = fit_plane(sum);
+    if (!fit.ok) {
+      store(m, false, 0.0, 0.0);
+      continue;
+    }
+    double bad = 0;
+    const auto count = [&](const Vec3& normal, double area, double against) {
+      bad += normal.dot(fit.normal) <= 0 ? area - against : against;
+    };
+    for (const Facing& f : s.inner_facing) count(f.normal, f.area, f.against);
+    for (std::size_t i = grown; i < s.queue.size(); ++i) {
+      const Index c = s.queue[i];
+      count(L.moments[c].normal, L.moments[c].area, L.against[c]);
+    }
+    store(m, true, fit.error, bad / sum.area);
   }
-  error = fit.error;
-  frac = bad / sum.area;
-  return true;
 }
 
 // F_S takes at least this many radii, even past the first failure of the M test.
@@ -339,14 +400,29 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
       });
     } else {
       const CellLevel L = build_cells(t, tm, adj, r / opt.cells_per_radius);
-      for (auto& s : scratch) s.mark.clear();
-      tbb::parallel_for(Index(0), nv, [&](Index v) {
-        if (!needed(v, i)) return;
-        const std::size_t k = std::size_t(v) * nl + i;
-        const Index start = L.cell_of_triangle[inc.vt[inc.vt_start[v]]];
-        ok[k] = cell_ball(L, start, t.positions[v] - centre, r, scratch.local(), error[k], frac[k]);
+      for (auto& s : scratch) s.mark.clear(), s.inner_mark.clear();
+      // The vertices still needed, grouped by the cell their search starts from.
+      const Index nc = Index(L.moments.size());
+      std::vector<Index> first(nc + 1, 0), members;
+      const auto start_of = [&](Index v) { return L.cell_of_triangle[inc.vt[inc.vt_start[v]]]; };
+      for (Index v = 0; v < nv; ++v)
+        if (needed(v, i)) ++first[start_of(v) + 1];
+      std::partial_sum(first.begin(), first.end(), first.begin());
+      members.resize(first.back());
+      std::vector<Index> fill(first.begin(), first.end() - 1);
+      for (Index v = 0; v < nv; ++v)
+        if (needed(v, i)) members[fill[start_of(v)]++] = v;
+      tbb::parallel_for(Index(0), nc, [&](Index c) {
+        const Index *group = members.data() + first[c], *end = members.data() + first[c + 1];
+        const std::size_t step = opt.share_cell_searches ? end - group : 1;  // all at once, or each alone
+        for (; group != end; group += step)
+          cell_balls(L, c, group, step, t, centre, r, scratch.local(),
+                     [&](std::size_t m, bool good, double e, double f) {
+                       const std::size_t k = std::size_t(group[m]) * nl + i;
+                       ok[k] = good, error[k] = e, frac[k] = f;
+                     });
       });
-      for (auto& s : scratch) s.mark.clear();
+      for (auto& s : scratch) s.mark.clear(), s.inner_mark.clear();
     }
     for (Index v = 0; v < nv && opt.local_s; ++v) {
       const std::size_t k = std::size_t(v) * nl + i;

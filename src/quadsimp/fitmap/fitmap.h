@@ -29,6 +29,10 @@ struct FitmapOptions {
   //! a clustering of the mesh into cells of size r / cells_per_radius.
   double exact_up_to = 4.0;
   double cells_per_radius = 8.0;
+  //! Vertices whose cell search starts in the same cell share the part of their balls
+  //! that lies in all of them (the same cells, summed once). Off: one search per vertex,
+  //! for comparisons; the sums then differ only in their rounding.
+  bool share_cell_searches = true;
   int smooth_s = 1, smooth_m = 2;  //!< Laplacian passes afterwards (as vcglib does)
   //! Local S (ours): a = the median over the radii up to F_M(p) (at least three) of
   //! E_i / r_i^2, instead of the paper's least-squares fit over all radii. With all
