@@ -123,19 +123,10 @@ struct Incidence {
   }
 };
 
-// What the inconsistent area of a cell needs, packed: each point's count reads every
-// cell of the shared inner part, and L's full moments are three times as wide.
-struct Facing {
-  Vec3 normal;
-  double area, against;
-};
-
 struct Scratch {
   std::vector<Index> mark, queue, tris;
   Index stamp = 0;
-  std::vector<Index> inner_mark, inner, rim;  // cell_balls()' part shared by its points
-  Index inner_stamp = 0;
-  std::vector<Facing> inner_facing;
+  std::vector<Index> inner, rim;  // cell_balls()' part shared by its points
 };
 
 // Plane-fit error and inconsistent-area fraction of the connected ball (p, r), on the
@@ -233,85 +224,93 @@ CellLevel build_cells(const TriMesh& t, const std::vector<Moments>& tm,
   return L;
 }
 
-// The cell balls of radius r around several points that all start from one cell. Every
-// cell within r - spread of the points' mean, and connected to the start through such
-// cells, lies in each point's ball and is reached by its search. That inner part is
-// gathered and summed once; each point's search only grows it from its rim. The cells
-// are the same as a search per point; at the largest radii hundreds of vertices share a
-// start cell (bench/RESULTS.md, "Fitmaps: one search per cell").
-// store(m, ok, error, frac) receives the m-th point's result.
+// Grows a cell ball: expands cells[from..] through neighbours within r of p that are not
+// stamped `stamp` or `shared`, appending, stamping and summing each one it adds.
+void grow(const CellLevel& L, const Vec3& p, double r, std::vector<Index>& cells, std::size_t from,
+          std::vector<Index>& mark, Index stamp, Index shared, Moments& sum) {
+  const double r2 = r * r;
+  Moments acc = sum;  // a local the compiler may keep in registers: sum could alias L.moments
+  for (std::size_t i = from; i < cells.size(); ++i) {
+    const Index c = cells[i];
+    for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
+      const Index x = L.adj[j];
+      if (mark[x] != stamp && mark[x] != shared && (L.centre[x] - p).squaredNorm() < r2) {
+        mark[x] = stamp;
+        cells.push_back(x);
+        acc.add(L.moments[x]);
+      }
+    }
+  }
+  sum = acc;
+}
+
+// The area of `cells` facing against `normal`, from each cell's own split of its area.
+double area_against(const CellLevel& L, const Index* cells, const Index* end, const Vec3& normal) {
+  double bad = 0;
+  for (; cells != end; ++cells) {
+    const Index c = *cells;
+    bad += L.moments[c].normal.dot(normal) <= 0 ? L.moments[c].area - L.against[c] : L.against[c];
+  }
+  return bad;
+}
+
+// Groups of fewer points than this search one by one: sharing costs a search of its own.
+constexpr std::size_t kShareFrom = 8;
+
+// The cell balls of radius r around points that all start from one cell: each ball is the
+// cells connected to the start through cells whose centre is within r of the point.
+// Every cell within r - spread of the points' mean, connected to the start through such
+// cells, lies in each of these balls. That inner part is gathered and summed once, and
+// each point's search only grows it from its rim: the same cells as a search per point.
+// At the largest radii hundreds of vertices share a start cell (bench/RESULTS.md,
+// "Fitmaps: one search per cell"). store(m, ok, error, frac) takes the m-th point's result.
 template <class Store>
 void cell_balls(const CellLevel& L, Index start, const Index* members, std::size_t n, const TriMesh& t,
-                const Vec3& centre, double r, Scratch& s, const Store& store) {
-  if (s.mark.size() < L.moments.size()) {
-    s.mark.assign(L.moments.size(), 0);
-    s.inner_mark.assign(L.moments.size(), 0);
+                const Vec3& centre, double r, bool share, Scratch& s, const Store& store) {
+  if (s.mark.size() < L.moments.size()) s.mark.assign(L.moments.size(), 0);
+  // The m-th point's fit, over the inner part (when shared) and the queue's cells from `from` on.
+  const auto fit_and_store = [&](std::size_t m, const Moments& sum, bool with_inner, std::size_t from) {
+    const Fit fit = fit_plane(sum);
+    if (!fit.ok) return store(m, false, 0.0, 0.0);
+    double bad = with_inner ? area_against(L, s.inner.data(), s.inner.data() + s.inner.size(), fit.normal) : 0.0;
+    bad += area_against(L, s.queue.data() + from, s.queue.data() + s.queue.size(), fit.normal);
+    store(m, true, fit.error, bad / sum.area);
+  };
+  if (!share || n < kShareFrom) {
+    for (std::size_t m = 0; m < n; ++m) {
+      const Index stamp = ++s.stamp;
+      s.queue.assign(1, start);
+      s.mark[start] = stamp;
+      Moments sum = L.moments[start];
+      grow(L, t.positions[members[m]] - centre, r, s.queue, 0, s.mark, stamp, stamp, sum);
+      fit_and_store(m, sum, false, 0);
+    }
+    return;
   }
   Vec3 mean = Vec3::Zero();
   for (std::size_t j = 0; j < n; ++j) mean += t.positions[members[j]] - centre;
   mean /= double(n);
   double spread = 0;
   for (std::size_t j = 0; j < n; ++j) spread = std::max(spread, (t.positions[members[j]] - centre - mean).norm());
-  const double ri = std::max(r - spread, 0.0), r2 = r * r;
 
-  const Index inner = ++s.inner_stamp;
-  s.inner.clear();
-  s.inner.push_back(start);
-  s.inner_mark[start] = inner;
-  Moments inner_sum;
-  for (std::size_t i = 0; i < s.inner.size(); ++i) {
-    const Index c = s.inner[i];
-    inner_sum.add(L.moments[c]);
-    for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
-      const Index x = L.adj[j];
-      if (s.inner_mark[x] != inner && (L.centre[x] - mean).squaredNorm() < ri * ri) {
-        s.inner_mark[x] = inner;
-        s.inner.push_back(x);
-      }
-    }
-  }
+  const Index inner = ++s.stamp;
+  s.inner.assign(1, start);
+  s.mark[start] = inner;
+  Moments inner_sum = L.moments[start];
+  grow(L, mean, std::max(r - spread, 0.0), s.inner, 0, s.mark, inner, inner, inner_sum);
   s.rim.clear();
-  s.inner_facing.clear();
-  for (Index c : s.inner) s.inner_facing.push_back({L.moments[c].normal, L.moments[c].area, L.against[c]});
   for (Index c : s.inner)
     for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j)
-      if (s.inner_mark[L.adj[j]] != inner) {
+      if (s.mark[L.adj[j]] != inner) {
         s.rim.push_back(c);
         break;
       }
-
   for (std::size_t m = 0; m < n; ++m) {
-    const Vec3 p = t.positions[members[m]] - centre;
     const Index stamp = ++s.stamp;
     Moments sum = inner_sum;
     s.queue.assign(s.rim.begin(), s.rim.end());
-    const std::size_t grown = s.queue.size();  // cells from here on are outside the inner part
-    for (std::size_t i = 0; i < s.queue.size(); ++i) {
-      const Index c = s.queue[i];
-      if (i >= grown) sum.add(L.moments[c]);
-      for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
-        const Index x = L.adj[j];
-        if (s.inner_mark[x] != inner && s.mark[x] != stamp && (L.centre[x] - p).squaredNorm() < r2) {
-          s.mark[x] = stamp;
-          s.queue.push_back(x);
-        }
-      }
-    }
-    const Fit fit = fit_plane(sum);
-    if (!fit.ok) {
-      store(m, false, 0.0, 0.0);
-      continue;
-    }
-    double bad = 0;
-    const auto count = [&](const Vec3& normal, double area, double against) {
-      bad += normal.dot(fit.normal) <= 0 ? area - against : against;
-    };
-    for (const Facing& f : s.inner_facing) count(f.normal, f.area, f.against);
-    for (std::size_t i = grown; i < s.queue.size(); ++i) {
-      const Index c = s.queue[i];
-      count(L.moments[c].normal, L.moments[c].area, L.against[c]);
-    }
-    store(m, true, fit.error, bad / sum.area);
+    grow(L, t.positions[members[m]] - centre, r, s.queue, 0, s.mark, stamp, inner, sum);
+    fit_and_store(m, sum, true, s.rim.size());  // the rim is in the inner part
   }
 }
 
@@ -400,7 +399,7 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
       });
     } else {
       const CellLevel L = build_cells(t, tm, adj, r / opt.cells_per_radius);
-      for (auto& s : scratch) s.mark.clear(), s.inner_mark.clear();
+      for (auto& s : scratch) s.mark.clear();
       // The vertices still needed, grouped by the cell their search starts from.
       const Index nc = Index(L.moments.size());
       std::vector<Index> first(nc + 1, 0), members;
@@ -414,15 +413,13 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
         if (needed(v, i)) members[fill[start_of(v)]++] = v;
       tbb::parallel_for(Index(0), nc, [&](Index c) {
         const Index *group = members.data() + first[c], *end = members.data() + first[c + 1];
-        const std::size_t step = opt.share_cell_searches ? end - group : 1;  // all at once, or each alone
-        for (; group != end; group += step)
-          cell_balls(L, c, group, step, t, centre, r, scratch.local(),
-                     [&](std::size_t m, bool good, double e, double f) {
-                       const std::size_t k = std::size_t(group[m]) * nl + i;
-                       ok[k] = good, error[k] = e, frac[k] = f;
-                     });
+        cell_balls(L, c, group, end - group, t, centre, r, opt.share_cell_searches, scratch.local(),
+                   [&](std::size_t m, bool good, double e, double f) {
+                     const std::size_t k = std::size_t(group[m]) * nl + i;
+                     ok[k] = good, error[k] = e, frac[k] = f;
+                   });
       });
-      for (auto& s : scratch) s.mark.clear(), s.inner_mark.clear();
+      for (auto& s : scratch) s.mark.clear();
     }
     for (Index v = 0; v < nv && opt.local_s; ++v) {
       const std::size_t k = std::size_t(v) * nl + i;
