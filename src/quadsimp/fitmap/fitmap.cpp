@@ -126,7 +126,7 @@ struct Incidence {
 struct Scratch {
   std::vector<Index> mark, queue, tris;
   Index stamp = 0;
-  std::vector<Index> inner, rim;  // cell_balls()' part shared by its points
+  std::vector<Index> inner, rim;  // cell_balls()' part shared by its points, and the cells around it
 };
 
 // Plane-fit error and inconsistent-area fraction of the connected ball (p, r), on the
@@ -261,7 +261,8 @@ constexpr std::size_t kShareFrom = 8;
 // cells connected to the start through cells whose centre is within r of the point.
 // Every cell within r - spread of the points' mean, connected to the start through such
 // cells, lies in each of these balls. That inner part is gathered and summed once, and
-// each point's search only grows it from its rim: the same cells as a search per point.
+// each point's search only grows it through the cells around it: the same cells as a
+// search per point.
 // At the largest radii hundreds of vertices share a start cell (bench/RESULTS.md,
 // "Fitmaps: one search per cell"). store(m, ok, error, frac) takes the m-th point's result.
 template <class Store>
@@ -298,19 +299,31 @@ void cell_balls(const CellLevel& L, Index start, const Index* members, std::size
   s.mark[start] = inner;
   Moments inner_sum = L.moments[start];
   grow(L, mean, std::max(r - spread, 0.0), s.inner, 0, s.mark, inner, inner, inner_sum);
+  // The cells just outside the inner part: a point's ball leaves it through them.
+  const Index outside = ++s.stamp;
   s.rim.clear();
   for (Index c : s.inner)
-    for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j)
-      if (s.mark[L.adj[j]] != inner) {
-        s.rim.push_back(c);
-        break;
+    for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
+      const Index x = L.adj[j];
+      if (s.mark[x] != inner && s.mark[x] != outside) {
+        s.mark[x] = outside;
+        s.rim.push_back(x);
       }
+    }
+  const double r2 = r * r;
   for (std::size_t m = 0; m < n; ++m) {
+    const Vec3 p = t.positions[members[m]] - centre;
     const Index stamp = ++s.stamp;
     Moments sum = inner_sum;
-    s.queue.assign(s.rim.begin(), s.rim.end());
-    grow(L, t.positions[members[m]] - centre, r, s.queue, 0, s.mark, stamp, inner, sum);
-    fit_and_store(m, sum, true, s.rim.size());  // the rim is in the inner part
+    s.queue.clear();
+    for (Index x : s.rim)
+      if ((L.centre[x] - p).squaredNorm() < r2) {
+        s.mark[x] = stamp;
+        s.queue.push_back(x);
+        sum.add(L.moments[x]);
+      }
+    grow(L, p, r, s.queue, 0, s.mark, stamp, inner, sum);
+    fit_and_store(m, sum, true, 0);
   }
 }
 
