@@ -298,7 +298,10 @@ void cell_balls(const CellLevel& L, Index start, const Index* members, std::size
   s.inner.assign(1, start);
   s.mark[start] = inner;
   Moments inner_sum = L.moments[start];
-  grow(L, mean, std::max(r - spread, 0.0), s.inner, 0, s.mark, inner, inner, inner_sum);
+  // A hair inside r - spread, so that rounding cannot put a cell in the inner part that a
+  // point's own test would find on the far side of r.
+  const double inner_r = std::max(r - spread, 0.0) * (1 - 1e-9);
+  grow(L, mean, inner_r, s.inner, 0, s.mark, inner, inner, inner_sum);
   // The cells just outside the inner part: a point's ball leaves it through them.
   const Index outside = ++s.stamp;
   s.rim.clear();
