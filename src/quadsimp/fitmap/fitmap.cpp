@@ -126,7 +126,7 @@ struct Incidence {
 struct Scratch {
   std::vector<Index> mark, queue, tris;
   Index stamp = 0;
-  std::vector<Index> inner, rim;  // cell_balls()' part shared by its points, and the cells around it
+  std::vector<Index> inner, around;  // cell_balls()' part shared by its points, and the cells around it
 };
 
 // Plane-fit error and inconsistent-area fraction of the connected ball (p, r), on the
@@ -304,13 +304,13 @@ void cell_balls(const CellLevel& L, Index start, const Index* members, std::size
   grow(L, mean, inner_r, s.inner, 0, s.mark, inner, inner, inner_sum);
   // The cells just outside the inner part: a point's ball leaves it through them.
   const Index outside = ++s.stamp;
-  s.rim.clear();
+  s.around.clear();
   for (Index c : s.inner)
     for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
       const Index x = L.adj[j];
       if (s.mark[x] != inner && s.mark[x] != outside) {
         s.mark[x] = outside;
-        s.rim.push_back(x);
+        s.around.push_back(x);
       }
     }
   const double r2 = r * r;
@@ -319,7 +319,7 @@ void cell_balls(const CellLevel& L, Index start, const Index* members, std::size
     const Index stamp = ++s.stamp;
     Moments sum = inner_sum;
     s.queue.clear();
-    for (Index x : s.rim)
+    for (Index x : s.around)
       if ((L.centre[x] - p).squaredNorm() < r2) {
         s.mark[x] = stamp;
         s.queue.push_back(x);
