@@ -224,13 +224,13 @@ CellLevel build_cells(const TriMesh& t, const std::vector<Moments>& tm,
   return L;
 }
 
-// Grows a cell ball: expands cells[from..] through neighbours within r of p that are not
+// Grows a cell ball: expands `cells` through neighbours within r of p that are not
 // stamped `stamp` or `shared`, appending, stamping and summing each one it adds.
-void grow(const CellLevel& L, const Vec3& p, double r, std::vector<Index>& cells, std::size_t from,
-          std::vector<Index>& mark, Index stamp, Index shared, Moments& sum) {
+void grow(const CellLevel& L, const Vec3& p, double r, std::vector<Index>& cells, std::vector<Index>& mark,
+          Index stamp, Index shared, Moments& sum) {
   const double r2 = r * r;
   Moments acc = sum;  // a local the compiler may keep in registers: sum could alias L.moments
-  for (std::size_t i = from; i < cells.size(); ++i) {
+  for (std::size_t i = 0; i < cells.size(); ++i) {
     const Index c = cells[i];
     for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
       const Index x = L.adj[j];
@@ -245,12 +245,9 @@ void grow(const CellLevel& L, const Vec3& p, double r, std::vector<Index>& cells
 }
 
 // The area of `cells` facing against `normal`, from each cell's own split of its area.
-double area_against(const CellLevel& L, const Index* cells, const Index* end, const Vec3& normal) {
+double area_against(const CellLevel& L, const std::vector<Index>& cells, const Vec3& normal) {
   double bad = 0;
-  for (; cells != end; ++cells) {
-    const Index c = *cells;
-    bad += L.moments[c].normal.dot(normal) <= 0 ? L.moments[c].area - L.against[c] : L.against[c];
-  }
+  for (Index c : cells) bad += L.moments[c].normal.dot(normal) <= 0 ? L.moments[c].area - L.against[c] : L.against[c];
   return bad;
 }
 
@@ -269,12 +266,12 @@ template <class Store>
 void cell_balls(const CellLevel& L, Index start, const Index* members, std::size_t n, const TriMesh& t,
                 const Vec3& centre, double r, bool share, Scratch& s, const Store& store) {
   if (s.mark.size() < L.moments.size()) s.mark.assign(L.moments.size(), 0);
-  // The m-th point's fit, over the inner part (when shared) and the queue's cells from `from` on.
-  const auto fit_and_store = [&](std::size_t m, const Moments& sum, bool with_inner, std::size_t from) {
+  // The m-th point's fit, over the queue's cells and the inner part when shared.
+  const auto fit_and_store = [&](std::size_t m, const Moments& sum, bool with_inner) {
     const Fit fit = fit_plane(sum);
     if (!fit.ok) return store(m, false, 0.0, 0.0);
-    double bad = with_inner ? area_against(L, s.inner.data(), s.inner.data() + s.inner.size(), fit.normal) : 0.0;
-    bad += area_against(L, s.queue.data() + from, s.queue.data() + s.queue.size(), fit.normal);
+    double bad = with_inner ? area_against(L, s.inner, fit.normal) : 0.0;
+    bad += area_against(L, s.queue, fit.normal);
     store(m, true, fit.error, bad / sum.area);
   };
   if (!share || n < kShareFrom) {
@@ -283,8 +280,8 @@ void cell_balls(const CellLevel& L, Index start, const Index* members, std::size
       s.queue.assign(1, start);
       s.mark[start] = stamp;
       Moments sum = L.moments[start];
-      grow(L, t.positions[members[m]] - centre, r, s.queue, 0, s.mark, stamp, stamp, sum);
-      fit_and_store(m, sum, false, 0);
+      grow(L, t.positions[members[m]] - centre, r, s.queue, s.mark, stamp, stamp, sum);
+      fit_and_store(m, sum, false);
     }
     return;
   }
@@ -301,7 +298,7 @@ void cell_balls(const CellLevel& L, Index start, const Index* members, std::size
   // A hair inside r - spread, so that rounding cannot put a cell in the inner part that a
   // point's own test would find on the far side of r.
   const double inner_r = std::max(r - spread, 0.0) * (1 - 1e-9);
-  grow(L, mean, inner_r, s.inner, 0, s.mark, inner, inner, inner_sum);
+  grow(L, mean, inner_r, s.inner, s.mark, inner, inner, inner_sum);
   // The cells just outside the inner part: a point's ball leaves it through them.
   const Index outside = ++s.stamp;
   s.around.clear();
@@ -325,8 +322,8 @@ void cell_balls(const CellLevel& L, Index start, const Index* members, std::size
         s.queue.push_back(x);
         sum.add(L.moments[x]);
       }
-    grow(L, p, r, s.queue, 0, s.mark, stamp, inner, sum);
-    fit_and_store(m, sum, true, 0);
+    grow(L, p, r, s.queue, s.mark, stamp, inner, sum);
+    fit_and_store(m, sum, true);
   }
 }
 
