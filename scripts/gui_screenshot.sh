@@ -13,12 +13,7 @@ for tool in xdotool:xdotool import:imagemagick Xvfb:xvfb; do
 done
 source "$here/tests/integration/meshlab_env.sh"
 ml_env_setup "$plugin"
-mesh=$here/../shared/datasets/bunny.ply
-if [ ! -f "$mesh" ]; then
-  # Debian's MeshLab 2020.09 aborts on every OBJ (Debian bug #1054006): glmark2's bunny as PLY.
-  mesh=$ML_ROOT/bunny.ply
-  "$here/build/src/quadsimp" fitmap /usr/share/glmark2/models/bunny.obj "$mesh" -q
-fi
+mesh=$(ml_bunny_ply "$here/../shared/datasets" "$here/build/src/quadsimp" "$ML_ROOT/bunny.ply")
 display=:$((90 + RANDOM % 100))
 Xvfb "$display" -screen 0 1280x900x24 >/dev/null 2>&1 &
 xvfb=$!

@@ -25,3 +25,15 @@ ml_run() {
   shift
   xvfb-run -a "$ML_BIN/$program" "$@"
 }
+
+# The shared bunny.ply if DATASETS has it, else glmark2's bunny written as PLY to OUT:
+# Debian's MeshLab 2020.09 aborts on every OBJ (Debian bug #1054006). Prints the path.
+# Usage: ml_bunny_ply DATASETS_DIR QUADSIMP_CLI OUT.ply
+ml_bunny_ply() {
+  local datasets=$1 cli=$2 out=$3
+  if [ -f "$datasets/bunny.ply" ]; then
+    echo "$datasets/bunny.ply"
+  else
+    "$cli" fitmap /usr/share/glmark2/models/bunny.obj "$out" -q >/dev/null && echo "$out"
+  fi
+}

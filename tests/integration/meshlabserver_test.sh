@@ -56,14 +56,12 @@ run_case() {  # input target
   echo "ok: $name -> $faces quads (target $target)"
 }
 run_case "$work/torus.ply" 500
-bunny=$datasets/bunny.ply
-if [ ! -f "$bunny" ]; then
-  # Debian's meshlabserver 2020.09 aborts on every OBJ (Debian bug #1054006), so glmark2's
-  # bunny goes in as PLY: the fitmap command writes its triangles, and MeshLab saves them
-  # again so that the CLI reads the float coordinates MeshLab holds.
+bunny=$(ml_bunny_ply "$datasets" "$cli" "$work/bunny_fitmap.ply") || fail "could not write the fallback bunny.ply"
+if [ "$bunny" = "$work/bunny_fitmap.ply" ]; then
+  # MeshLab saves glmark2's bunny again, so that the CLI reads the float coordinates
+  # MeshLab holds.
+  server -i "$bunny" -o "$work/bunny.ply" || fail "could not save the fallback bunny.ply"
   bunny=$work/bunny.ply
-  { "$cli" fitmap /usr/share/glmark2/models/bunny.obj "$work/bunny_fitmap.ply" -q &&
-    server -i "$work/bunny_fitmap.ply" -o "$bunny"; } || fail "could not write the fallback bunny.ply"
 fi
 run_case "$bunny" 3000
 
