@@ -539,7 +539,9 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
   Index moved = 0;
   for (Index p = 0; p < patches; ++p) {
     std::vector<Index>& vs = to_move[p];
-    for (int ring = 0; ring <= kUnfoldRings && !vs.empty(); ++ring) {
+    const std::size_t own = vs.size();
+    bool flat = false;
+    for (int ring = 0; ring <= kUnfoldRings && !vs.empty() && !flat; ++ring) {
       if (ring > 0) {  // the region's other vertices join the ones that move
         if (vs.size() >= kUnfoldMostVertices) break;
         for (Index f : region)
@@ -563,18 +565,20 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
       before.clear();
       for (Index v : vs) before.push_back(P[v]);
       move_to_neighbour_means(m, around, vs, 1e-9 * extent);
-      const bool flat = std::all_of(region.begin(), region.end(), [&](Index f) {
+      flat = std::all_of(region.begin(), region.end(), [&](Index f) {
         const Vec3 n = m.area_normal(m.faces[f]);
         if (!(n.dot(facing) > 0)) return false;
         for (Index g : adj[f])
           if (g != kNone && n.normalized().dot(m.area_normal(m.faces[g]).normalized()) < kFoldedBackCos) return false;
         return true;
       });
-      if (flat) {
-        ++mended, moved += Index(vs.size());
-        break;
-      }
-      for (std::size_t i = 0; i < vs.size(); ++i) P[vs[i]] = before[i];
+      if (!flat)
+        for (std::size_t i = 0; i < vs.size(); ++i) P[vs[i]] = before[i];
+    }
+    if (flat) {
+      ++mended, moved += Index(vs.size());
+    } else {  // the rings stay free for the patches after this one
+      for (std::size_t i = own; i < vs.size(); ++i) taken[vs[i]] = 0;
     }
   }
   return moved;
