@@ -224,6 +224,17 @@ CellLevel build_cells(const TriMesh& t, const std::vector<Moments>& tm,
   return L;
 }
 
+// Takes cell x into the ball around p if its centre lies within r (r2 = r * r):
+// stamps, appends and sums it.
+inline void take_if_within(const CellLevel& L, Index x, const Vec3& p, double r2, Index stamp,
+                           std::vector<Index>& cells, std::vector<Index>& mark, Moments& sum) {
+  if ((L.centre[x] - p).squaredNorm() < r2) {
+    mark[x] = stamp;
+    cells.push_back(x);
+    sum.add(L.moments[x]);
+  }
+}
+
 // Grows a cell ball: expands `cells` through neighbours within r of p that are not
 // stamped `stamp` or `shared`, appending, stamping and summing each one it adds.
 void grow(const CellLevel& L, const Vec3& p, double r, std::vector<Index>& cells, std::vector<Index>& mark,
@@ -234,11 +245,7 @@ void grow(const CellLevel& L, const Vec3& p, double r, std::vector<Index>& cells
     const Index c = cells[i];
     for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
       const Index x = L.adj[j];
-      if (mark[x] != stamp && mark[x] != shared && (L.centre[x] - p).squaredNorm() < r2) {
-        mark[x] = stamp;
-        cells.push_back(x);
-        acc.add(L.moments[x]);
-      }
+      if (mark[x] != stamp && mark[x] != shared) take_if_within(L, x, p, r2, stamp, cells, mark, acc);
     }
   }
   sum = acc;
@@ -316,12 +323,7 @@ void cell_balls(const CellLevel& L, Index start, const Index* members, std::size
     const Index stamp = ++s.stamp;
     Moments sum = inner_sum;
     s.queue.clear();
-    for (Index x : s.around)
-      if ((L.centre[x] - p).squaredNorm() < r2) {
-        s.mark[x] = stamp;
-        s.queue.push_back(x);
-        sum.add(L.moments[x]);
-      }
+    for (Index x : s.around) take_if_within(L, x, p, r2, stamp, s.queue, s.mark, sum);
     grow(L, p, r, s.queue, s.mark, stamp, inner, sum);
     fit_and_store(m, sum, true);
   }
