@@ -497,8 +497,8 @@ void move_to_neighbour_means(TriMesh& m, const CornersAround& around, const std:
 // vertices around the ones moved join them, ring by ring: a Tutte embedding lies flat
 // inside a convex ring, and the ring of a sliver is long and thin (the armadillo split
 // in four twice has 23 folded patches; 12 lay flat inside their own ring, the others
-// inside 1 to 6 more). If none lays it flat, the patch stays as it was, for
-// ReferenceSurface to mark. Border vertices stay. A quad mesh cannot follow a Z-fold,
+// inside 1 to 6 more). Only discs are tried (patches_that_are_discs()). If none lays
+// it flat, the patch stays as it was, for ReferenceSurface to mark. Border vertices stay. A quad mesh cannot follow a Z-fold,
 // and the simplifier's care over a marked one (over_flap()) is not enough everywhere:
 // on glmark2's bunny split before cleaning it left a flipped quad and homeometry down
 // to 0.18 at 20,000 quads, on the armadillo split twice two flipped quads and 0.07.
@@ -508,6 +508,35 @@ constexpr int kUnfoldRings = 8;
 // flat costs sweeps over all of it for each ring (the unit tests' thin leaf on a stalk,
 // 2,000 vertices: 0.1 s to put back, 0.9 s with eight rings).
 constexpr std::size_t kUnfoldMostVertices = 1024;
+
+// Whether each patch is a disc of triangles, by its Euler characteristic (V - E + F = 1;
+// discs joined at a vertex count too). A fold is one: the surface turns back over itself
+// and forward again. The overhanging wall of a post is a band round the post (0), and laid
+// flat it squashed the post: coarse posts of 16 to 64 sides, walls leaning out by 20 to 60
+// degrees, lost their overhang, rim moved in.
+std::vector<char> patches_that_are_discs(const TriMesh& m, const std::vector<Index>& patch, Index patches) {
+  std::vector<int> euler(patches, 0);
+  std::vector<std::array<Index, 2>> corners;
+  std::vector<std::array<Index, 3>> edges;
+  for (Index f = 0; f < m.n_faces(); ++f)
+    if (const Index p = patch[f]; p != kNone) {
+      ++euler[p];
+      for (int k = 0; k < 3; ++k) {
+        const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
+        corners.push_back({p, a});
+        edges.push_back({p, std::min(a, b), std::max(a, b)});
+      }
+    }
+  std::sort(corners.begin(), corners.end());
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    if (i == 0 || corners[i] != corners[i - 1]) ++euler[corners[i][0]];
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    if (i == 0 || edges[i] != edges[i - 1]) --euler[edges[i][0]];
+  std::vector<char> disc(patches);
+  for (Index p = 0; p < patches; ++p) disc[p] = euler[p] == 1;
+  return disc;
+}
 
 Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
                      Index& mended) {
@@ -537,7 +566,9 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
   Index visit = 0;  // marks `seen` per region
   std::vector<Vec3> before;
   Index moved = 0;
+  const std::vector<char> disc = patches_that_are_discs(m, patch, patches);
   for (Index p = 0; p < patches; ++p) {
+    if (!disc[p]) continue;
     std::vector<Index>& vs = to_move[p];
     const std::size_t own = vs.size();
     bool flat = false;
