@@ -467,6 +467,40 @@ TEST(Clean, lays_flat_a_split_sliver_with_the_rings_around_it) {
   }
 }
 
+// Two slivers on one row of a grid, split in four twice, each needing rings around it
+// (the test above). One cell apart, they share vertices, and laid flat one at a time
+// neither lay flat: they are laid flat as one patch. Two cells apart, the first one laid
+// flat held the ring the second needed: whether both lay flat depended on which came
+// first, and a patch whose rings met another's vertices now gets a second try. Both lie
+// flat whichever of them comes first in the mesh.
+TEST(Clean, lays_flat_two_split_slivers_side_by_side_whichever_comes_first) {
+  struct Pair {
+    int apart;
+    Index down, patches;  // the left one folds two triangles when one cell away
+  };
+  for (const Pair& pair : {Pair{1, 48, 1}, Pair{2, 32, 2}}) {
+    for (const bool reversed : {false, true}) {
+      SCOPED_TRACE(std::to_string(pair.apart) + (reversed ? " cells apart, faces reversed" : " cells apart"));
+      const TriMesh grid = tri_grid(16, 16);
+      TriMesh t = grid;
+      push_across(t, 8 * 17 + 10, 0.2, 0.5);
+      push_across(t, 8 * 17 + 10 - pair.apart, 0.3, 0.35);
+      t = split_in_four(split_in_four(t));
+      ASSERT_EQ(faces_facing_down(t), pair.down);
+      if (reversed) std::reverse(t.faces.begin(), t.faces.end());
+      const TriMesh folded = t;
+      const CleanReport r = clean(t);
+      EXPECT_EQ(r.unfolded_patches, pair.patches);
+      EXPECT_EQ(faces_facing_down(t), 0u);
+      EXPECT_EQ(t.faces, folded.faces);
+      for (Index v = 0; v < t.n_vertices(); ++v)
+        if ((folded.positions[v] - grid.positions[8 * 17 + 9]).norm() > 4.0 / 16) {
+          EXPECT_EQ(t.positions[v], folded.positions[v]);
+        }
+    }
+  }
+}
+
 namespace {
 // `patches` patches are found (folded_patches()), and clean() leaves the mesh as it was:
 // each is tried and put back, or not tried.

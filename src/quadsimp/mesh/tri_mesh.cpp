@@ -497,8 +497,9 @@ void move_to_neighbour_means(TriMesh& m, const CornersAround& around, const std:
 // vertices around the ones moved join them, ring by ring: a Tutte embedding lies flat
 // inside a convex ring, and the ring of a sliver is long and thin (the armadillo split
 // in four twice has 23 folded patches; 12 lay flat inside their own ring, the others
-// inside 1 to 6 more). Only discs are tried (patches_that_are_discs()). If none lays
-// it flat, the patch stays as it was, for ReferenceSurface to mark. Border vertices stay. A quad mesh cannot follow a Z-fold,
+// inside 1 to 6 more). A patch whose rings met another patch's vertices gets a second
+// try at the end. If none lays it flat, the patch stays as it was, for ReferenceSurface
+// to mark. Border vertices stay. A quad mesh cannot follow a Z-fold,
 // and the simplifier's care over a marked one (over_flap()) is not enough everywhere:
 // on glmark2's bunny split before cleaning it left a flipped quad and homeometry down
 // to 0.18 at 20,000 quads, on the armadillo split twice two flipped quads and 0.07.
@@ -508,6 +509,35 @@ constexpr int kUnfoldRings = 8;
 // flat costs sweeps over all of it for each ring (the unit tests' thin leaf on a stalk,
 // 2,000 vertices: 0.1 s to put back, 0.9 s with eight rings).
 constexpr std::size_t kUnfoldMostVertices = 1024;
+
+// Folded patches that face the same way and share a vertex that may move are laid flat as
+// one: one at a time, each held the vertices it shared with the other still, and neither
+// lay flat (two slivers side by side on a grid split twice). Patches facing opposite ways
+// stay apart: a post's overhanging wall and its head are both patches, and laid flat as
+// one they flattened the post. Renumbers `patch` in the order of the patches' first
+// triangles and returns the count.
+Index join_patches_sharing_a_vertex(const TriMesh& m, const std::vector<char>& border, Index patches,
+                                    std::vector<Index>& patch) {
+  std::vector<Vec3> facing(patches, Vec3::Zero());
+  for (Index f = 0; f < m.n_faces(); ++f)
+    if (patch[f] != kNone) facing[patch[f]] += m.area_normal(m.faces[f]);
+  UnionFind sets(patches);
+  std::vector<Index> patch_at(m.n_vertices(), kNone);
+  for (Index f = 0; f < m.n_faces(); ++f)
+    if (patch[f] != kNone)
+      for (Index v : m.faces[f])
+        if (!border[v]) {
+          if (patch_at[v] == kNone) patch_at[v] = patch[f];
+          if (facing[patch_at[v]].dot(facing[patch[f]]) > 0) sets.unite(patch_at[v], patch[f]);
+        }
+  std::vector<Index> number(patches, kNone);
+  Index n = 0;
+  for (Index p = 0; p < patches; ++p)  // the lowest part of each set is its root, and comes first
+    if (sets.find(p) == p) number[p] = n++;
+  for (Index& p : patch)
+    if (p != kNone) p = number[sets.find(p)];
+  return n;
+}
 
 // Whether each patch is a disc of triangles, by its Euler characteristic (V - E + F = 1;
 // discs joined at a vertex count too). A fold is one: the surface turns back over itself
@@ -547,37 +577,48 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
   // at any share from 1e-4 to 1e-2. The side of a thin part with a sharp rim, a leaf on
   // a stalk, is a patch too, but laid flat it still faces against its surroundings, and
   // the check below puts it back.
-  const Index patches = folded_patches(m, adj, normals, patch, kLaidFlatShare, kLaidFlatCos);
+  Index patches = folded_patches(m, adj, normals, patch, kLaidFlatShare, kLaidFlatCos);
   if (patches == 0) return 0;
   const CornersAround around = corners_around(m);
   std::vector<char> border(m.n_vertices(), 0);
   for (Index f = 0; f < m.n_faces(); ++f)
     for (Index k = 0; k < 3; ++k)
       if (adj[f][k] == kNone) border[m.faces[f][k]] = border[m.faces[f][(k + 1) % 3]] = 1;
+  patches = join_patches_sharing_a_vertex(m, border, patches, patch);
+  // held[v]: the patch whose vertices v is among, its own from the start, or one of its
+  // rings while it tries and after it lay flat. A try's rings take vertices no patch holds.
   std::vector<std::vector<Index>> to_move(patches);
-  std::vector<char> taken(m.n_vertices(), 0);
+  std::vector<Index> held(m.n_vertices(), kNone);
   for (Index f = 0; f < m.n_faces(); ++f)
     if (patch[f] != kNone)
       for (Index v : m.faces[f])
-        if (!border[v] && !taken[v]) taken[v] = 1, to_move[patch[f]].push_back(v);
+        if (!border[v] && held[v] == kNone) held[v] = patch[f], to_move[patch[f]].push_back(v);
 
   auto& P = m.positions;
-  std::vector<Index> seen(m.n_faces(), kNone), region;
+  std::vector<Index> seen(m.n_faces(), kNone), region, in_try(m.n_vertices(), kNone), newly_held;
   Index visit = 0;  // marks `seen` per region
   std::vector<Vec3> before;
-  Index moved = 0;
-  const std::vector<char> disc = patches_that_are_discs(m, patch, patches);
-  for (Index p = 0; p < patches; ++p) {
-    if (!disc[p]) continue;
+  std::vector<char> laid(patches, 0);
+  // Lays patch p flat, ring by ring. With `take_laid`, the rings also take vertices of the
+  // patches laid flat already; `met` tells whether they met vertices another patch holds.
+  const auto lay_flat = [&](Index p, bool take_laid, bool& met) {
     std::vector<Index>& vs = to_move[p];
-    const std::size_t own = vs.size();
-    bool flat = false;
-    for (int ring = 0; ring <= kUnfoldRings && !vs.empty() && !flat; ++ring) {
+    const Index own = Index(vs.size()), try_id = take_laid ? patches + p : p;
+    for (Index v : vs) in_try[v] = try_id;
+    newly_held.clear();
+    for (int ring = 0; ring <= kUnfoldRings && !vs.empty(); ++ring) {
       if (ring > 0) {  // the region's other vertices join the ones that move
         if (vs.size() >= kUnfoldMostVertices) break;
         for (Index f : region)
-          for (Index v : m.faces[f])
-            if (!border[v] && !taken[v]) taken[v] = 1, vs.push_back(v);
+          for (Index v : m.faces[f]) {
+            if (border[v] || in_try[v] == try_id) continue;
+            if (held[v] != kNone && !(take_laid && laid[held[v]])) {
+              met = true;
+              continue;
+            }
+            if (held[v] == kNone) held[v] = p, newly_held.push_back(v);
+            in_try[v] = try_id, vs.push_back(v);
+          }
       }
       region.clear();
       ++visit;
@@ -596,23 +637,46 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
       before.clear();
       for (Index v : vs) before.push_back(P[v]);
       move_to_neighbour_means(m, around, vs, 1e-9 * extent);
-      flat = std::all_of(region.begin(), region.end(), [&](Index f) {
+      const bool flat = std::all_of(region.begin(), region.end(), [&](Index f) {
         const Vec3 n = m.area_normal(m.faces[f]);
         if (!(n.dot(facing) > 0)) return false;
         for (Index g : adj[f])
           if (g != kNone && n.normalized().dot(m.area_normal(m.faces[g]).normalized()) < kFoldedBackCos) return false;
         return true;
       });
-      if (!flat)
-        for (std::size_t i = 0; i < vs.size(); ++i) P[vs[i]] = before[i];
+      if (flat) {
+        laid[p] = 1;
+        return true;
+      }
+      for (std::size_t i = 0; i < vs.size(); ++i) P[vs[i]] = before[i];
     }
-    if (flat) {
-      ++mended, moved += Index(vs.size());
-    } else {  // the rings stay free for the patches after this one
-      for (std::size_t i = own; i < vs.size(); ++i) taken[vs[i]] = 0;
-    }
+    for (Index v : newly_held) held[v] = kNone;  // free for the patches after it
+    vs.resize(own);
+    return false;
+  };
+  const std::vector<char> disc = patches_that_are_discs(m, patch, patches);
+  std::vector<Index> retry;
+  for (Index p = 0; p < patches; ++p) {
+    bool met = false;
+    if (disc[p] && !lay_flat(p, false, met) && met) retry.push_back(p);
   }
-  return moved;
+  // A patch whose rings met vertices another patch held is tried again at the end, its
+  // rings free to take the vertices of the patches laid flat: whether two folds a few
+  // triangles apart both lay flat depended on which came first. Moving vertices another
+  // patch laid flat is safe, since the checks cover every triangle a moved vertex touches.
+  // The vertices of patches that did not lie flat, or were not tried, stay out of it:
+  // they are kept as they are (a leaf's top, the band of a post's overhanging wall).
+  for (Index p : retry) {
+    bool met = false;
+    lay_flat(p, true, met);
+  }
+  std::vector<char> was_moved(m.n_vertices(), 0);
+  for (Index p = 0; p < patches; ++p)
+    if (laid[p]) {
+      ++mended;
+      for (Index v : to_move[p]) was_moved[v] = 1;
+    }
+  return Index(std::count(was_moved.begin(), was_moved.end(), 1));
 }
 
 }  // namespace
