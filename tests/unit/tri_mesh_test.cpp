@@ -528,6 +528,19 @@ TEST(Clean, puts_back_the_top_of_a_thin_leaf_found_as_a_patch) {
   expect_tried_and_put_back(leaf_on_stalk(0.2, 4), 1);
 }
 
+// Coarse leaves on a stalk of one to four rows. The rings grew from the leaf's top down its
+// underside and the stalk onto the disc, and the whole leaf and stalk then lay flat on the
+// disc, 0.6 down. The surface around a fold faces one way (the rings stop where it turns
+// away from the way it faces), so here they stop where the stalk leaves the underside.
+TEST(Clean, puts_back_a_leaf_on_a_short_coarse_stalk) {
+  for (const double radius : {0.1, 0.2, 0.5})
+    for (const int steps : {1, 4})
+      for (const int stalk : {1, 4}) {
+        SCOPED_TRACE(std::to_string(radius) + " " + std::to_string(steps) + " " + std::to_string(stalk));
+        expect_tried_and_put_back(leaf_on_stalk(radius, steps, stalk), 1);
+      }
+}
+
 // A post whose wall leans out by 40 degrees (a dovetail): the wall is bounded all round
 // by edges turning by 130 degrees, past kFoldedBackCos, like a fold's middle layer, and
 // faces down against the disc and the post's head. Laid flat, it fails the checks that

@@ -488,22 +488,22 @@ void move_to_neighbour_means(TriMesh& m, const CornersAround& around, const std:
   }
 }
 
-// A patch of several triangles folded back (glmark2's bunny's fold split in four twice
-// is 16) has no one edge to flip. Its vertices move instead, each to the mean of the
-// other corners of its triangles, in sweeps until they settle: a Tutte embedding of the
-// patch inside the ring of vertices that stay, which lays it flat between them. Kept
-// only if every triangle around a moved vertex then faces like the unmoved triangles
-// there did (their summed normal) and none turns back against a neighbour. Else the
-// vertices around the ones moved join them, ring by ring: a Tutte embedding lies flat
-// inside a convex ring, and the ring of a sliver is long and thin (the armadillo split
-// in four twice has 23 folded patches; 12 lay flat inside their own ring, the others
-// inside 1 to 6 more). A patch whose rings met another patch's vertices gets a second
-// try at the end. If none lays it flat, the patch stays as it was, for ReferenceSurface
-// to mark. Border vertices stay. A quad mesh cannot follow a Z-fold,
-// and the simplifier's care over a marked one (over_flap()) is not enough everywhere:
-// on glmark2's bunny split before cleaning it left a flipped quad and homeometry down
-// to 0.18 at 20,000 quads, on the armadillo split twice two flipped quads and 0.07.
-// Returns the vertices moved; `mended` counts the patches laid flat.
+// A patch of several triangles folded back (glmark2's bunny's fold split in four twice is
+// 16) has no one edge to flip. Its vertices move instead, each to the mean of the other
+// corners of its triangles, in sweeps until they settle: a Tutte embedding of the patch
+// inside the ring of vertices that stay, which lays it flat between them. Kept only if
+// every triangle around a moved vertex then faces like the unmoved triangles there did
+// (their summed normal) and none turns back against a neighbour. Else the vertices around
+// the ones moved join them, ring by ring, while the triangles around all face that way: a
+// Tutte embedding lies flat inside a convex ring, and the ring of a sliver is long and
+// thin (the armadillo split in four twice has 23 folded patches; 12 lay flat inside their
+// own ring, the others inside 1 to 6 more). A patch whose rings met another patch's
+// vertices gets a second try at the end. If none lays it flat, the patch stays as it was,
+// for ReferenceSurface to mark. Border vertices stay. A quad mesh cannot follow a Z-fold,
+// and the simplifier's care over a marked one (over_flap()) is not enough everywhere: on
+// glmark2's bunny split before cleaning it left a flipped quad and homeometry down to
+// 0.18 at 20,000 quads, on the armadillo split twice two flipped quads and 0.07. Returns
+// the vertices moved; `mended` counts the patches laid flat.
 constexpr int kUnfoldRings = 8;
 // Rings are added while fewer vertices than this move: a large patch that will not lie
 // flat costs sweeps over all of it for each ring (the unit tests' thin leaf on a stalk,
@@ -634,6 +634,13 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
           for (Index k = 0; k < 3; ++k) extent = std::max(extent, (P[m.faces[f][k]] - P[v]).norm());
         }
       if (facing.isZero()) break;
+      // The surface a fold lies on faces one way. Where the surface around turns away, the
+      // rings stop: grown from a leaf's top down its underside and a short stalk onto the
+      // disc below, they laid the whole leaf and stalk flat on the disc.
+      if (!std::all_of(region.begin(), region.end(), [&](Index f) {
+            return patch[f] != kNone || m.area_normal(m.faces[f]).dot(facing) > 0;
+          }))
+        break;
       before.clear();
       for (Index v : vs) before.push_back(P[v]);
       move_to_neighbour_means(m, around, vs, 1e-9 * extent);

@@ -79,9 +79,9 @@ struct CleanReport {
 //! re-oriented consistently within each component, caps (height under 1e-3 of the
 //! longest edge) and single triangles folded back onto their neighbours mended by
 //! flipping an edge, small patches folded back (folded_patches()) laid flat by moving
-//! their vertices, and if need be up to eight rings of vertices around them (not those
-//! on the border). Only patches that are discs are tried: a band round a post with an
-//! overhanging wall stays.
+//! their vertices, and if need be up to eight rings of vertices around them while the
+//! surface there faces one way (not those on the border). Only patches that are discs
+//! are tried: a band round a post with an overhanging wall stays.
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
 //!        out-of-range indices, a non-orientable component. `what` is one sentence;
 //!        `source` (a file name) prefixes it.
