@@ -521,15 +521,17 @@ Index join_patches_sharing_a_vertex(const TriMesh& m, const std::vector<char>& b
   std::vector<Vec3> facing(patches, Vec3::Zero());
   for (Index f = 0; f < m.n_faces(); ++f)
     if (patch[f] != kNone) facing[patch[f]] += m.area_normal(m.faces[f]);
-  UnionFind sets(patches);
-  std::vector<Index> patch_at(m.n_vertices(), kNone);
+  std::vector<std::array<Index, 2>> at;  // (vertex, patch) for every corner that may move
   for (Index f = 0; f < m.n_faces(); ++f)
     if (patch[f] != kNone)
       for (Index v : m.faces[f])
-        if (!border[v]) {
-          if (patch_at[v] == kNone) patch_at[v] = patch[f];
-          if (facing[patch_at[v]].dot(facing[patch[f]]) > 0) sets.unite(patch_at[v], patch[f]);
-        }
+        if (!border[v]) at.push_back({v, patch[f]});
+  std::sort(at.begin(), at.end());
+  at.erase(std::unique(at.begin(), at.end()), at.end());
+  UnionFind sets(patches);
+  for (std::size_t i = 0; i < at.size(); ++i)  // every two patches at one vertex
+    for (std::size_t j = i + 1; j < at.size() && at[j][0] == at[i][0]; ++j)
+      if (facing[at[i][1]].dot(facing[at[j][1]]) > 0) sets.unite(at[i][1], at[j][1]);
   std::vector<Index> number(patches, kNone);
   Index n = 0;
   for (Index p = 0; p < patches; ++p)  // the lowest part of each set is its root, and comes first
