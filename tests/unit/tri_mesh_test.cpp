@@ -416,12 +416,6 @@ TEST(Clean, lays_flat_a_fold_whose_ends_turn_by_less_than_120_degrees) {
   for (Index v = 0; v < t.n_vertices(); ++v) EXPECT_LT((t.positions[v] - grid.positions[v]).norm(), 0.05 / 64);
 }
 
-// A vertex of a grid pushed across the far edge of one of its triangles folds that
-// triangle back, a sliver, which an edge flip mends. Split in four twice, the sliver is a
-// patch of 16 triangles, and inside the ring around its vertices two of them still faced
-// down once laid flat: the ring of a sliver is long and thin. The vertices around join
-// the ones that move, ring by ring, until the patch lies flat. A slighter push needs no
-// more than the patch's own vertices.
 namespace {
 // Pushes grid vertex c across the far edge of its first triangle, to `past` times its
 // distance from the point `along` that edge: that triangle folds back, a sliver.
@@ -435,6 +429,12 @@ void push_across(TriMesh& t, Index c, double along, double past) {
 }
 }  // namespace
 
+// A vertex of a grid pushed across the far edge of one of its triangles folds that
+// triangle back, a sliver, which an edge flip mends. Split in four twice, the sliver is a
+// patch of 16 triangles, and inside the ring around its vertices two of them still faced
+// down once laid flat: the ring of a sliver is long and thin. The vertices around join
+// the ones that move, ring by ring, until the patch lies flat. A slighter push needs no
+// more than the patch's own vertices.
 TEST(Clean, lays_flat_a_split_sliver_with_the_rings_around_it) {
   struct Push {
     double along, past;
@@ -543,17 +543,17 @@ TEST(Clean, puts_back_a_leaf_on_a_short_coarse_stalk) {
 
 // A post whose wall leans out by 40 degrees (a dovetail): the wall is bounded all round
 // by edges turning by 130 degrees, past kFoldedBackCos, like a fold's middle layer, and
-// faces down against the disc and the post's head. Laid flat, it fails the checks that
-// follow and is put back. The head is a patch too, with only the wall around it: nothing
-// to lay it flat against.
+// faces down against the disc and the post's head. But it is a band round the post, not
+// a disc of triangles like a fold, and is not tried (before that check, this wall was
+// tried and put back by the checks that follow). The head is a patch too, with only the
+// wall around it: nothing to lay it flat against.
 TEST(Clean, puts_back_an_undercut_wall_found_as_a_patch) {
   expect_tried_and_put_back(post_with_undercut(40), 2);
 }
 
-// The same post with a wall of one to four rows of triangles. Its wall is a band round
-// the post, not a disc like a fold, and is not tried. Tried, walls of these leans laid
-// flat: the rim moved in by about the overhang (0.10 at 40 degrees and two rows) and the
-// post lost its undercut.
+// The same post with a wall of one to four rows of triangles. Tried, walls of these leans
+// laid flat: the rim moved in by about the overhang (0.10 at 40 degrees and two rows) and
+// the post lost its undercut.
 TEST(Clean, leaves_the_band_of_a_coarse_undercut_wall_alone) {
   for (const double degrees : {20.0, 40.0, 60.0})
     for (const int rows : {1, 2, 4}) {
