@@ -80,7 +80,7 @@ struct CleanReport {
 //! longest edge) and single triangles folded back onto their neighbours mended by
 //! flipping an edge, small patches folded back (folded_patches()) laid flat by moving
 //! their vertices, and if need be up to eight rings of vertices around them while the
-//! surface there faces one way (not those on the border). Only patches that are discs
+//! region faces the way the patch's own surroundings do (not those on the border). Only patches that are discs
 //! are tried: a band round a post with an overhanging wall stays.
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
 //!        out-of-range indices, a non-orientable component. `what` is one sentence;
