@@ -598,16 +598,17 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
 
   auto& P = m.positions;
   std::vector<Index> seen(m.n_faces(), kNone), region, in_try(m.n_vertices(), kNone), newly_held;
-  Index visit = 0;  // marks `seen` per region
+  Index visit = 0, tries = 0;  // mark `seen` per region and `in_try` per try
   std::vector<Vec3> before;
-  std::vector<char> laid(patches, 0);
-  // Lays patch p flat, ring by ring. With `take_laid`, the rings also take vertices of the
-  // patches laid flat already; `met` tells whether they met vertices another patch holds.
-  const auto lay_flat = [&](Index p, bool take_laid, bool& met) {
+  Index moved = 0;
+  bool met = false;  // whether the last try's rings met vertices another patch holds
+  // Lays patch p flat, ring by ring.
+  const auto lay_flat = [&](Index p) {
     std::vector<Index>& vs = to_move[p];
-    const Index own = Index(vs.size()), try_id = take_laid ? patches + p : p;
+    const Index own = Index(vs.size()), try_id = tries++;
     for (Index v : vs) in_try[v] = try_id;
     newly_held.clear();
+    met = false;
     // The way the triangles around the patch itself face (ring 0). The rings stop where
     // their region as a whole turns to face the other way: grown from a leaf's top down
     // its underside and a short stalk onto the disc below, the disc's triangles came to
@@ -623,7 +624,7 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
         for (Index f : region)
           for (Index v : m.faces[f]) {
             if (border[v] || in_try[v] == try_id) continue;
-            if (held[v] != kNone && !(take_laid && laid[held[v]])) {
+            if (held[v] != kNone) {
               met = true;
               continue;
             }
@@ -658,7 +659,7 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
         return true;
       });
       if (flat) {
-        laid[p] = 1;
+        ++mended, moved += Index(vs.size());
         return true;
       }
       for (std::size_t i = 0; i < vs.size(); ++i) P[vs[i]] = before[i];
@@ -668,28 +669,15 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
     return false;
   };
   const std::vector<char> disc = patches_that_are_discs(m, patch, patches);
+  // A patch whose rings met another patch's vertices is tried again at the end, once every
+  // patch has moved: whether two folds a few triangles apart both lay flat depended on
+  // which came first. Letting the second try take the vertices of patches laid flat was
+  // not needed for that, and is not done: no try moves another patch's vertices.
   std::vector<Index> retry;
-  for (Index p = 0; p < patches; ++p) {
-    bool met = false;
-    if (disc[p] && !lay_flat(p, false, met) && met) retry.push_back(p);
-  }
-  // A patch whose rings met vertices another patch held is tried again at the end, its
-  // rings free to take the vertices of the patches laid flat: whether two folds a few
-  // triangles apart both lay flat depended on which came first. Moving vertices another
-  // patch laid flat is safe, since the checks cover every triangle a moved vertex touches.
-  // The vertices of patches that did not lie flat, or were not tried, stay out of it:
-  // they are kept as they are (a leaf's top, the band of a post's overhanging wall).
-  for (Index p : retry) {
-    bool met = false;
-    lay_flat(p, true, met);
-  }
-  std::vector<char> was_moved(m.n_vertices(), 0);
   for (Index p = 0; p < patches; ++p)
-    if (laid[p]) {
-      ++mended;
-      for (Index v : to_move[p]) was_moved[v] = 1;
-    }
-  return Index(std::count(was_moved.begin(), was_moved.end(), 1));
+    if (disc[p] && !lay_flat(p) && met) retry.push_back(p);
+  for (Index p : retry) lay_flat(p);
+  return moved;
 }
 
 }  // namespace
