@@ -522,6 +522,51 @@ TEST(Clean, lays_flat_two_split_slivers_side_by_side_whichever_comes_first) {
   }
 }
 
+// A grid vertex pushed across an edge exactly onto the vertex beyond it: its triangle lies
+// folded flat on its neighbour, and split in four, their inner vertices coincide too. Two
+// sheets touch there; merged as copies of one vertex, their edges met, up to 30 faces
+// were dropped, and which ones depended on face order. The copies stay apart, every face
+// stays, and the fold lies flat, whichever way the faces come.
+TEST(Clean, keeps_apart_a_fold_pushed_exactly_onto_a_vertex_and_lays_it_flat) {
+  for (int splits = 0; splits <= 2; ++splits)
+    for (const bool reversed : {false, true}) {
+      SCOPED_TRACE(std::to_string(splits) + (reversed ? " splits, faces reversed" : " splits"));
+      TriMesh t = tri_grid(8, 8);
+      const Index c = 4 * 9 + 4, beyond = c - 9 - 1;  // the middle vertex, and the one diagonally below it
+      push_across(t, c, 0.5, 1.0);
+      ASSERT_EQ(t.positions[c], t.positions[beyond]);
+      for (int i = 0; i < splits; ++i) t = split_in_four(t);
+      if (reversed) std::reverse(t.faces.begin(), t.faces.end());
+      const TriMesh folded = t;
+      const CleanReport r = clean(t);
+      EXPECT_EQ(r.merged_duplicate_vertices, 0u);
+      EXPECT_EQ(r.unfolded_patches, 1u);
+      EXPECT_EQ(faces_facing_down(t), 0u);
+      EXPECT_EQ(t.faces, folded.faces);
+    }
+}
+
+// A surface written twice, each copy with its own vertices, the second turned over (a
+// double-sided export): every vertex of a piece has a copy, so the copies are one vertex,
+// and the second surface's faces are duplicates.
+TEST(Clean, merges_a_surface_written_twice) {
+  const TriMesh sphere = tri_sphere(8, 10);
+  for (const bool turned : {false, true}) {
+    SCOPED_TRACE(turned ? "turned over" : "as it is");
+    TriMesh t = sphere;
+    const Index nv = sphere.n_vertices();
+    t.positions.insert(t.positions.end(), sphere.positions.begin(), sphere.positions.end());
+    for (const auto& f : sphere.faces)
+      t.faces.push_back(turned ? std::array<Index, 3>{f[2] + nv, f[1] + nv, f[0] + nv}
+                               : std::array<Index, 3>{f[0] + nv, f[1] + nv, f[2] + nv});
+    const CleanReport r = clean(t);
+    EXPECT_EQ(r.merged_duplicate_vertices, nv);
+    EXPECT_EQ(r.removed_duplicate_faces, sphere.n_faces());
+    EXPECT_EQ(t.n_vertices(), nv);
+    EXPECT_EQ(t.n_faces(), sphere.n_faces());
+  }
+}
+
 namespace {
 // `patches` patches are found (folded_patches()), and clean() leaves the mesh as it was:
 // each is tried and put back, or not tried.

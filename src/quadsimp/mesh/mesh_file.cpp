@@ -118,8 +118,9 @@ TriMesh triangles_of(const MeshFile& file) {
   // Two quads sharing two edges (a doublet, which MeshLab's own triangle pairing leaves)
   // were both split along the same corners: an edge of four triangles, which cleaning
   // refused as non-manifold. Vertices at one position count as one because cleaning
-  // merges them: a quad file whose slit has touching sides (our own output of a mesh
-  // that MeshLab's subdivision had pinched) got the same split on both sides.
+  // merges them where they are on a border: a quad file whose slit has touching sides
+  // (our own output of a mesh that MeshLab's subdivision had pinched) got the same split
+  // on both sides.
   const Index n = Index(file.positions.size());
   const std::vector<Index> same = file.quads.empty() ? std::vector<Index>() : first_equal_positions(file.positions);
   // A corner out of range is for cleaning to refuse with its message, not to be read here.

@@ -98,9 +98,53 @@ void remove_unreferenced(TriMesh& m, CleanReport& r) {
     for (Index& v : t) v = map[v];
 }
 
+// Exact copies of a point are mostly one vertex written more than once: an unwelded seam,
+// a triangle soup or a pole written once per segment, where the copies are on a border,
+// or a surface written twice (a double-sided export), where every vertex of a piece has
+// a copy. Other interior copies are two sheets that touch there: a grid vertex pushed
+// across an edge exactly onto another vertex, its triangle folded flat onto its
+// neighbour. Merged, their edges met: up to 30 faces were dropped at the edges made
+// non-manifold, the result depended on face order, and one such grid was refused as not
+// orientable. They stay apart, as close interior vertices do
+// (merge_close_border_vertices()), and the fold is laid flat.
 void merge_duplicate_vertices(TriMesh& m, CleanReport& r) {
-  const std::vector<Index> map = first_equal_positions(m.positions);
-  for (Index v = 0; v < Index(map.size()); ++v) r.merged_duplicate_vertices += map[v] != v;
+  const std::vector<Index> same = first_equal_positions(m.positions);
+  std::vector<Index> map = same;
+  const Index n = Index(map.size());
+  std::vector<char> copied(n, 0);
+  for (Index v = 0; v < n; ++v)
+    if (same[v] != v) copied[v] = copied[same[v]] = 1;
+  if (std::find(copied.begin(), copied.end(), 1) != copied.end()) {
+    // On a border: a neighbour in only one of its faces.
+    const CornersAround around = corners_around(m);
+    std::vector<Index> ring;
+    const auto on_border = [&](Index v) {
+      ring.clear();
+      for (Index i = around.start[v]; i < around.start[v + 1]; ++i) {
+        const auto& t = m.faces[around.corner[i] / 3];
+        const Index k = around.corner[i] % 3;
+        ring.push_back(t[(k + 1) % 3]);
+        ring.push_back(t[(k + 2) % 3]);
+      }
+      std::sort(ring.begin(), ring.end());
+      for (std::size_t i = 0; i < ring.size(); ++i)
+        if ((i == 0 || ring[i] != ring[i - 1]) && (i + 1 == ring.size() || ring[i] != ring[i + 1])) return true;
+      return false;
+    };
+    std::vector<char> seam(n, 0);  // per first copy: whether any copy is on a border
+    for (Index v = 0; v < n; ++v)
+      if (copied[v] && on_border(v)) seam[same[v]] = 1;
+    UnionFind piece(n);
+    for (const auto& t : m.faces) piece.unite(t[0], t[1]), piece.unite(t[0], t[2]);
+    std::vector<char> all_copied(n, 1);  // per piece
+    for (const auto& t : m.faces)
+      for (Index v : t)
+        if (!copied[v]) all_copied[piece.find(v)] = 0;
+    for (Index v = 0; v < n; ++v)
+      if (same[v] != v && !seam[same[v]] && !(all_copied[piece.find(v)] && all_copied[piece.find(same[v])]))
+        map[v] = v;
+  }
+  for (Index v = 0; v < n; ++v) r.merged_duplicate_vertices += map[v] != v;
   for (auto& t : m.faces)
     for (Index& v : t) v = map[v];
 }

@@ -71,8 +71,9 @@ struct CleanReport {
 
 //! Makes `mesh` a clean, oriented, edge- and vertex-manifold triangle mesh, or throws.
 //!
-//! Repairs (each logged): exact-duplicate vertices merged, border vertices closer than
-//! 1e-6 of the bounding-box diagonal merged, faces with a repeated
+//! Repairs (each logged): exact-duplicate vertices merged (those on a border, or all of
+//! a piece written twice; interior vertices of two sheets that touch stay apart), border
+//! vertices closer than 1e-6 of the bounding-box diagonal merged, faces with a repeated
 //! vertex or zero area removed, duplicate faces removed, at an edge with more than
 //! two triangles all removed but the two across which the surface runs on straightest,
 //! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
