@@ -522,6 +522,30 @@ TEST(Clean, lays_flat_two_split_slivers_side_by_side_whichever_comes_first) {
   }
 }
 
+// A grid vertex moved exactly onto the far edge of one of its triangles (wherever along
+// it), as where CAD tessellations close a T-junction: that triangle has no area. Removed,
+// it left a slit, three border edges that the simplifier kept as a hole's. It is a cap of
+// no height, and flipping its long edge mends it: every face stays, no border is made.
+TEST(Clean, mends_a_triangle_of_no_area_by_a_flip) {
+  for (const double along : {0.5, 0.3, 0.05})
+    for (const bool reversed : {false, true}) {
+      SCOPED_TRACE(std::to_string(along) + (reversed ? ", faces reversed" : ""));
+      TriMesh t = tri_grid(8, 8);
+      push_across(t, 4 * 9 + 4, along, 0.0);
+      if (reversed) std::reverse(t.faces.begin(), t.faces.end());
+      const Index nf = t.n_faces();
+      const CleanReport r = clean(t);
+      EXPECT_EQ(r.removed_degenerate_faces, 0u);
+      EXPECT_EQ(r.flipped_edges, 1u);
+      EXPECT_EQ(t.n_faces(), nf);
+      Index border_edges = 0;
+      for (const auto& adj : triangle_adjacency(t)) border_edges += Index(std::count(adj.begin(), adj.end(), kNone));
+      EXPECT_EQ(border_edges, 4u * 8u);  // the grid's outline only
+      EXPECT_EQ(faces_facing_down(t), 0u);
+      for (const auto& f : t.faces) EXPECT_GT(t.area_normal(f).norm(), 0.0);
+    }
+}
+
 // A grid vertex pushed across an edge exactly onto the vertex beyond it: its triangle lies
 // folded flat on its neighbour, and split in four, their inner vertices coincide too. Two
 // sheets touch there; merged as copies of one vertex, their edges met, up to 30 faces

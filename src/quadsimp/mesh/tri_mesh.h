@@ -74,12 +74,13 @@ struct CleanReport {
 //! Repairs (each logged): exact-duplicate vertices merged (those on a border, or all of
 //! a piece written twice; interior vertices of two sheets that touch stay apart), border
 //! vertices closer than 1e-6 of the bounding-box diagonal merged, faces with a repeated
-//! vertex or zero area removed, duplicate faces removed, at an edge with more than
+//! vertex removed, duplicate faces removed, at an edge with more than
 //! two triangles all removed but the two across which the surface runs on straightest,
 //! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
 //! re-oriented consistently within each component, caps (height under 1e-3 of the
-//! longest edge) and single triangles folded back onto their neighbours mended by
-//! flipping an edge, small patches folded back (folded_patches()) laid flat by moving
+//! longest edge; of no height, wherever the apex) and single triangles folded back onto
+//! their neighbours mended by flipping an edge, faces of no area the flips left removed,
+//! small patches folded back (folded_patches()) laid flat by moving
 //! their vertices, and if need be up to eight rings of vertices around them while the
 //! region faces the way the patch's own surroundings do (not those on the border). Only patches that are discs
 //! are tried: a band round a post with an overhanging wall stays.
