@@ -228,6 +228,87 @@ bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index,
   return true;
 }
 
+// A crack: one border edge a-b on one side, and on the other a path of border edges from
+// a to b through vertices along it, T-junctions. CAD tessellations make them where they
+// mesh neighbouring patches apart, one finer than the other; on a curved patch the finer
+// side's vertices lie on the curve, off the coarser side's chord by its sagitta (a
+// twentieth of the chord where it turns by 25 degrees). The simplifier kept such a crack
+// open, a hole's border. The path's vertices must lie in order along a-b, within
+// kCrackWidth of its length from it: a thin hole, not a hole's far side. Such an edge is
+// split at them, its triangle fanned out from its third corner, and the sides then share
+// their edges. Up to kCrackSteps vertices; a split that would give the third corner an edge
+// it has already is left. Returns the number of vertices taken into edges.
+constexpr double kCrackWidth = 0.25;
+constexpr int kCrackSteps = 16;
+Index zip_cracks(TriMesh& m, const std::vector<std::array<Index, 3>>& adj) {
+  // Each vertex's neighbours along the border, as compressed rows.
+  std::vector<Index> start(m.n_vertices() + 1, 0), along;
+  bool any_border = false;
+  for (Index f = 0; f < m.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k)
+      if (adj[f][k] == kNone) ++start[m.faces[f][k] + 1], ++start[m.faces[f][(k + 1) % 3] + 1], any_border = true;
+  if (!any_border) return 0;
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  along.resize(start.back());
+  std::vector<Index> fill(start.begin(), start.end() - 1);
+  for (Index f = 0; f < m.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k)
+      if (adj[f][k] == kNone) {
+        const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
+        along[fill[a]++] = b;
+        along[fill[b]++] = a;
+      }
+  const CornersAround corners = corners_around(m);
+  const auto has_edge = [&](Index u, Index w) {
+    for (Index i = corners.start[u]; i < corners.start[u + 1]; ++i) {
+      const auto& t = m.faces[corners.corner[i] / 3];
+      if (t[0] == w || t[1] == w || t[2] == w) return true;
+    }
+    return false;
+  };
+  const auto& P = m.positions;
+  std::vector<char> split(m.n_faces(), 0);
+  std::vector<Index> path;
+  Index zipped = 0;
+  const Index nf = m.n_faces();
+  for (Index f = 0; f < nf; ++f)
+    for (Index k = 0; k < 3 && !split[f]; ++k) {
+      if (adj[f][k] != kNone) continue;
+      const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3], o = m.faces[f][(k + 2) % 3];
+      const Vec3 ab = P[b] - P[a];
+      const double len2 = ab.squaredNorm(), width2 = kCrackWidth * kCrackWidth * len2;
+      if (!(len2 > 0)) continue;
+      // The path from a, each step further along a-b, ending at b (depth first; the first
+      // found).
+      const auto extend = [&](auto&& self, Index v, double s) -> bool {
+        if (int(path.size()) > kCrackSteps) return false;
+        for (Index i = start[v]; i < start[v + 1]; ++i) {
+          const Index w = along[i];
+          if (w == b) {
+            if (path.size() > 1) return true;
+            continue;  // the edge a-b itself
+          }
+          if (w == a || w == o || std::find(path.begin(), path.end(), w) != path.end()) continue;
+          const double t = (P[w] - P[a]).dot(ab) / len2;
+          if (!(t > s && t < 1) || (P[a] + t * ab - P[w]).squaredNorm() > width2) continue;
+          path.push_back(w);
+          if (self(self, w, t)) return true;
+          path.pop_back();
+        }
+        return false;
+      };
+      path.assign(1, a);
+      if (!extend(extend, a, 0.0)) continue;
+      if (std::any_of(path.begin() + 1, path.end(), [&](Index v) { return has_edge(o, v); })) continue;
+      path.push_back(b);
+      m.faces[f] = {path[0], path[1], o};
+      for (std::size_t x = 1; x + 1 < path.size(); ++x) m.faces.push_back({path[x], path[x + 1], o});
+      zipped += Index(path.size() - 2);
+      split[f] = 1;
+    }
+  return zipped;
+}
+
 // The squared twice-area at and under which a face of m has no area: relative to its size.
 double no_area2(const TriMesh& m) { return std::pow(1e-12 * bbox_diagonal(m.positions), 4); }
 bool is_flat(const TriMesh& m, const std::array<Index, 3>& t, double no_area2) {
@@ -919,6 +1000,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
       remove_degenerate_and_duplicate_faces(m, r);
       adj = manifold_adjacency();
     }
+    if ((r.zipped_t_junctions = zip_cracks(m, adj))) adj = manifold_adjacency();
     orient(m, adj, r, src);
   }
   split_nonmanifold_vertices(m, r);  // faces keep their neighbours
@@ -940,6 +1022,8 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
     };
     note(r.merged_duplicate_vertices, "duplicate vertices merged");
     note(r.merged_close_vertices, "vertices merged with a border vertex closer than 1e-6 of the bounding-box diagonal");
+    note(r.zipped_t_junctions,
+         "border vertices lying along a border edge across a crack (T-junctions) taken into that edge, closing the crack");
     note(r.removed_degenerate_faces, "degenerate faces removed");
     note(r.removed_duplicate_faces, "duplicate faces removed");
     note(r.removed_nonmanifold_faces,

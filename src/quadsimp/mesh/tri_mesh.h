@@ -51,6 +51,7 @@ std::vector<Vec3> unit_normals(const TriMesh& mesh);
 struct CleanReport {
   Index merged_duplicate_vertices = 0;
   Index merged_close_vertices = 0;  //!< border vertices within 1e-6 of the bbox diagonal of another
+  Index zipped_t_junctions = 0;     //!< border vertices on a border edge across a crack, split into it
   Index removed_degenerate_faces = 0;
   Index removed_duplicate_faces = 0;
   Index removed_nonmanifold_faces = 0;  //!< at edges with more than two triangles, all but the straightest pair
@@ -63,7 +64,7 @@ struct CleanReport {
   //! Whether the faces themselves changed (a vertex merged, split or moved, a face
   //! removed or turned); dropping unreferenced vertices does not count.
   bool changed_faces() const {
-    return merged_duplicate_vertices + merged_close_vertices + removed_degenerate_faces + removed_duplicate_faces +
+    return merged_duplicate_vertices + merged_close_vertices + zipped_t_junctions + removed_degenerate_faces + removed_duplicate_faces +
                removed_nonmanifold_faces + split_nonmanifold_vertices + flipped_faces + flipped_edges +
                moved_vertices > 0;
   }
@@ -73,7 +74,9 @@ struct CleanReport {
 //!
 //! Repairs (each logged): exact-duplicate vertices merged (those on a border, or all of
 //! a piece written twice; interior vertices of two sheets that touch stay apart), border
-//! vertices closer than 1e-6 of the bounding-box diagonal merged, faces with a repeated
+//! vertices closer than 1e-6 of the bounding-box diagonal merged, cracks closed where one
+//! side's border edge spans a path of the other side's border vertices lying along it
+//! (T-junctions: the edge is split at them), faces with a repeated
 //! vertex removed, duplicate faces removed, at an edge with more than
 //! two triangles all removed but the two across which the surface runs on straightest,
 //! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
