@@ -523,33 +523,40 @@ TEST(Clean, lays_flat_two_split_slivers_side_by_side_whichever_comes_first) {
 }
 
 // Two patches meshed apart, as CAD tessellations do: a grid of 8 x 8 cells and, beside
-// it, one twice as fine along their common side. Every other vertex of the fine side is a
-// copy of one of the coarse side's; the others lie along the coarse side's edges, on them
-// while the patches are flat, off them by the sagitta once bent into a bowl. These
-// T-junctions kept a crack open as a hole's border. Each is taken into the edge it lies
-// along, and the crack closes: the only border left is the outline. A hole stays.
+// it, one of 8 x 16 or 8 x 12 cells, so that along their common side every other vertex of
+// the finer one is a copy of the coarser one's, or only every third. The others lie along
+// the other side's edges, on them while the patches are flat, off them by the sagitta
+// once bent into a bowl. These T-junctions kept a crack open as a hole's border. Each is
+// taken into the edge it lies along, and the crack closes: the only border left is the
+// outline. A hole stays.
 TEST(Clean, zips_a_crack_of_t_junctions_between_two_patches) {
-  for (const bool bent : {false, true})
-    for (const bool reversed : {false, true}) {
-      SCOPED_TRACE(std::string(bent ? "bent" : "flat") + (reversed ? ", faces reversed" : ""));
-      TriMesh t = tri_grid(8, 8);
-      const TriMesh fine = tri_grid(8, 16);
-      const Index offset = t.n_vertices();
-      for (const Vec3& p : fine.positions) t.positions.push_back(p + Vec3(1, 0, 0));
-      for (const auto& f : fine.faces) t.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
-      if (bent)
-        for (Vec3& p : t.positions) p.z() = 0.5 * ((p.x() - 1) * (p.x() - 1) + (p.y() - 0.5) * (p.y() - 0.5));
-      if (reversed) std::reverse(t.faces.begin(), t.faces.end());
-      const Index nf = t.n_faces();
-      const CleanReport r = clean(t);
-      EXPECT_EQ(r.merged_duplicate_vertices, 9u);
-      EXPECT_EQ(r.zipped_t_junctions, 8u);
-      EXPECT_EQ(t.n_faces(), nf + 8);  // each coarse edge's triangle split in two
-      Index border_edges = 0;
-      for (const auto& adj : triangle_adjacency(t)) border_edges += Index(std::count(adj.begin(), adj.end(), kNone));
-      EXPECT_EQ(border_edges, 8u + 8u + 8u + 16u + 8u + 8u);  // bottom, top, and the two outer sides
-      EXPECT_EQ(r.flipped_faces, 0u);
-    }
+  struct Fine {
+    int rows;
+    Index copies, zipped;
+  };
+  for (const Fine& fine_side : {Fine{16, 9, 8}, Fine{12, 5, 4 + 8}})
+    for (const bool bent : {false, true})
+      for (const bool reversed : {false, true}) {
+        SCOPED_TRACE(std::to_string(fine_side.rows) + (bent ? " rows, bent" : " rows, flat") +
+                     (reversed ? ", faces reversed" : ""));
+        TriMesh t = tri_grid(8, 8);
+        const TriMesh fine = tri_grid(8, fine_side.rows);
+        const Index offset = t.n_vertices();
+        for (const Vec3& p : fine.positions) t.positions.push_back(p + Vec3(1, 0, 0));
+        for (const auto& f : fine.faces) t.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+        if (bent)
+          for (Vec3& p : t.positions) p.z() = 0.5 * ((p.x() - 1) * (p.x() - 1) + (p.y() - 0.5) * (p.y() - 0.5));
+        if (reversed) std::reverse(t.faces.begin(), t.faces.end());
+        const Index nf = t.n_faces();
+        const CleanReport r = clean(t);
+        EXPECT_EQ(r.merged_duplicate_vertices, fine_side.copies);
+        EXPECT_EQ(r.zipped_t_junctions, fine_side.zipped);
+        EXPECT_EQ(t.n_faces(), nf + fine_side.zipped);  // each split triangle made one more
+        Index border_edges = 0;
+        for (const auto& adj : triangle_adjacency(t)) border_edges += Index(std::count(adj.begin(), adj.end(), kNone));
+        EXPECT_EQ(border_edges, Index(16 + 16 + 8 + fine_side.rows));  // bottom, top, and the two outer sides
+        EXPECT_EQ(r.flipped_faces, 0u);
+      }
   // A hole a cell high and four wide, with its own border all round.
   TriMesh holed = tri_grid(8, 8);
   holed.faces.erase(std::remove_if(holed.faces.begin(), holed.faces.end(),

@@ -228,84 +228,121 @@ bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index,
   return true;
 }
 
-// A crack: one border edge a-b on one side, and on the other a path of border edges from
-// a to b through vertices along it, T-junctions. CAD tessellations make them where they
-// mesh neighbouring patches apart, one finer than the other; on a curved patch the finer
-// side's vertices lie on the curve, off the coarser side's chord by its sagitta (a
-// twentieth of the chord where it turns by 25 degrees). The simplifier kept such a crack
-// open, a hole's border. The path's vertices must lie in order along a-b, within
-// kCrackWidth of its length from it: a thin hole, not a hole's far side. Such an edge is
-// split at them, its triangle fanned out from its third corner, and the sides then share
-// their edges. Up to kCrackSteps vertices; a split that would give the third corner an edge
-// it has already is left. Returns the number of vertices taken into edges.
-constexpr double kCrackWidth = 0.25;
-constexpr int kCrackSteps = 16;
-Index zip_cracks(TriMesh& m, const std::vector<std::array<Index, 3>>& adj) {
-  // Each vertex's neighbours along the border, as compressed rows.
-  std::vector<Index> start(m.n_vertices() + 1, 0), along;
-  bool any_border = false;
-  for (Index f = 0; f < m.n_faces(); ++f)
-    for (Index k = 0; k < 3; ++k)
-      if (adj[f][k] == kNone) ++start[m.faces[f][k] + 1], ++start[m.faces[f][(k + 1) % 3] + 1], any_border = true;
-  if (!any_border) return 0;
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  along.resize(start.back());
-  std::vector<Index> fill(start.begin(), start.end() - 1);
-  for (Index f = 0; f < m.n_faces(); ++f)
-    for (Index k = 0; k < 3; ++k)
-      if (adj[f][k] == kNone) {
-        const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
-        along[fill[a]++] = b;
-        along[fill[b]++] = a;
-      }
-  const CornersAround corners = corners_around(m);
-  const auto has_edge = [&](Index u, Index w) {
-    for (Index i = corners.start[u]; i < corners.start[u + 1]; ++i) {
-      const auto& t = m.faces[corners.corner[i] / 3];
-      if (t[0] == w || t[1] == w || t[2] == w) return true;
-    }
-    return false;
-  };
+// A crack: two paths of border edges between the same two vertices, one along the other.
+// CAD tessellations make them where they mesh neighbouring patches apart: each side's
+// vertices lie along the other side's edges (T-junctions), on them while the patches are
+// flat, off them by the sagitta when curved (a twentieth of an edge that turns by 25
+// degrees). The simplifier kept such a crack open, a hole's border. A border edge a-b is
+// split at the border vertices that follow a, or b, along it: each further along than the
+// one before, and within kCrackWidth of the edge's length from it. The split gives the
+// other side's edges new vertices along them in turn, and the passes go on until the sides
+// share every edge (kCrackPasses at most). A thin hole, or the sharp corner of a hole, so
+// bounded closes too; a hole's far side is not along its edges. The edge's triangle is
+// fanned out from its third corner; a split that would give that corner an edge it has
+// already is left. Returns the number of vertices taken into edges.
+constexpr double kCrackSagitta = 0.125;
+constexpr int kCrackPasses = 16;
+Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
   const auto& P = m.positions;
-  std::vector<char> split(m.n_faces(), 0);
-  std::vector<Index> path;
   Index zipped = 0;
-  const Index nf = m.n_faces();
-  for (Index f = 0; f < nf; ++f)
-    for (Index k = 0; k < 3 && !split[f]; ++k) {
-      if (adj[f][k] != kNone) continue;
-      const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3], o = m.faces[f][(k + 2) % 3];
-      const Vec3 ab = P[b] - P[a];
-      const double len2 = ab.squaredNorm(), width2 = kCrackWidth * kCrackWidth * len2;
-      if (!(len2 > 0)) continue;
-      // The path from a, each step further along a-b, ending at b (depth first; the first
-      // found).
-      const auto extend = [&](auto&& self, Index v, double s) -> bool {
-        if (int(path.size()) > kCrackSteps) return false;
-        for (Index i = start[v]; i < start[v + 1]; ++i) {
-          const Index w = along[i];
-          if (w == b) {
-            if (path.size() > 1) return true;
-            continue;  // the edge a-b itself
-          }
-          if (w == a || w == o || std::find(path.begin(), path.end(), w) != path.end()) continue;
-          const double t = (P[w] - P[a]).dot(ab) / len2;
-          if (!(t > s && t < 1) || (P[a] + t * ab - P[w]).squaredNorm() > width2) continue;
-          path.push_back(w);
-          if (self(self, w, t)) return true;
-          path.pop_back();
+  std::vector<Index> start, along, fill;
+  std::vector<std::pair<double, Index>> cut;  // the vertices an edge is split at, by where along it
+  for (int pass = 0; pass < kCrackPasses; ++pass) {
+    // Each vertex's neighbours along the border, as compressed rows.
+    start.assign(m.n_vertices() + 1, 0);
+    bool any_border = false;
+    for (Index f = 0; f < m.n_faces(); ++f)
+      for (Index k = 0; k < 3; ++k)
+        if (adj[f][k] == kNone) ++start[m.faces[f][k] + 1], ++start[m.faces[f][(k + 1) % 3] + 1], any_border = true;
+    if (!any_border) break;
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    along.resize(start.back());
+    fill.assign(start.begin(), start.end() - 1);
+    for (Index f = 0; f < m.n_faces(); ++f)
+      for (Index k = 0; k < 3; ++k)
+        if (adj[f][k] == kNone) {
+          const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
+          along[fill[a]++] = b;
+          along[fill[b]++] = a;
         }
-        return false;
-      };
-      path.assign(1, a);
-      if (!extend(extend, a, 0.0)) continue;
-      if (std::any_of(path.begin() + 1, path.end(), [&](Index v) { return has_edge(o, v); })) continue;
-      path.push_back(b);
-      m.faces[f] = {path[0], path[1], o};
-      for (std::size_t x = 1; x + 1 < path.size(); ++x) m.faces.push_back({path[x], path[x + 1], o});
-      zipped += Index(path.size() - 2);
-      split[f] = 1;
-    }
+    const CornersAround corners = corners_around(m);
+    const auto has_edge = [&](Index u, Index w) {
+      for (Index i = corners.start[u]; i < corners.start[u + 1]; ++i) {
+        const auto& t = m.faces[corners.corner[i] / 3];
+        if (t[0] == w || t[1] == w || t[2] == w) return true;
+      }
+      return false;
+    };
+    std::vector<char> taken(m.n_vertices(), 0);  // split into an edge this pass
+    Index zipped_now = 0;
+    const Index nf = m.n_faces();
+    for (Index f = 0; f < nf; ++f)
+      for (Index k = 0; k < 3; ++k) {
+        if (adj[f][k] != kNone) continue;
+        const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3], o = m.faces[f][(k + 2) % 3];
+        const Vec3 ab = P[b] - P[a];
+        const double len2 = ab.squaredNorm();
+        if (!(len2 > 0)) continue;
+        cut.clear();
+        // From `from`, the border vertices each further along (towards t = 1 from a, t = 0
+        // from b), the nearest step first.
+        for (const bool from_a : {true, false}) {
+          const Index end = from_a ? b : a;
+          const std::size_t before = cut.size();
+          Index v = from_a ? a : b;
+          double t_v = from_a ? 0.0 : 1.0;
+          bool crack = false;  // the walk reached the other end, or went on past it
+          for (;;) {
+            Index next = kNone;
+            double t_next = 0;
+            for (Index i = start[v]; i < start[v + 1]; ++i) {
+              const Index w = along[i];
+              if (w == a || w == b || w == o || taken[w]) {
+                crack = crack || (w == end && cut.size() > before);
+                continue;
+              }
+              const double t = (P[w] - P[a]).dot(ab) / len2;
+              if (from_a ? t >= 1 : t <= 0) {
+                crack = crack || cut.size() > before;
+                continue;
+              }
+              const double reach = 4 * kCrackSagitta * t * (1 - t);  // an arc's offset from its chord
+              if (!(from_a ? t > t_v : t < t_v) || (P[a] + t * ab - P[w]).squaredNorm() > reach * reach * len2)
+                continue;
+              if (next == kNone || std::abs(t - t_v) < std::abs(t_next - t_v)) next = w, t_next = t;
+            }
+            if (crack || next == kNone ||
+                std::any_of(cut.begin(), cut.end(), [&](const auto& c) { return c.second == next; }))
+              break;
+            cut.push_back({t_next, next});
+            v = next, t_v = t_next;
+          }
+          if (!crack) cut.resize(before);  // a hole's corner, not a crack
+        }
+        if (cut.empty()) continue;
+        std::sort(cut.begin(), cut.end());
+        if (std::adjacent_find(cut.begin(), cut.end(), [](const auto& x, const auto& y) { return !(x.first < y.first); }) !=
+                cut.end() ||
+            std::any_of(cut.begin(), cut.end(), [&](const auto& c) { return has_edge(o, c.second); }))
+          continue;
+        Index prev = a;
+        for (std::size_t x = 0; x < cut.size(); ++x) {
+          const std::array<Index, 3> face{prev, cut[x].second, o};
+          if (x == 0)
+            m.faces[f] = face;
+          else
+            m.faces.push_back(face);
+          prev = cut[x].second;
+          taken[prev] = 1;
+        }
+        m.faces.push_back({prev, b, o});
+        zipped_now += Index(cut.size());
+        break;  // one edge per triangle and pass
+      }
+    if (!zipped_now) break;
+    zipped += zipped_now;
+    adj = triangle_adjacency(m);
+  }
   return zipped;
 }
 

@@ -74,9 +74,9 @@ struct CleanReport {
 //!
 //! Repairs (each logged): exact-duplicate vertices merged (those on a border, or all of
 //! a piece written twice; interior vertices of two sheets that touch stay apart), border
-//! vertices closer than 1e-6 of the bounding-box diagonal merged, cracks closed where one
-//! side's border edge spans a path of the other side's border vertices lying along it
-//! (T-junctions: the edge is split at them), faces with a repeated
+//! vertices closer than 1e-6 of the bounding-box diagonal merged, cracks closed where the
+//! border vertices of one side lie along the border edges of the other (T-junctions: each
+//! such edge is split at them), faces with a repeated
 //! vertex removed, duplicate faces removed, at an edge with more than
 //! two triangles all removed but the two across which the surface runs on straightest,
 //! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
