@@ -33,11 +33,11 @@ const std::vector<FilterSpec>& filter_specs() {
        "Turns a triangle mesh into a <b>pure quad mesh</b> without moving any vertex: triangles are paired "
        "greedily into the best-shaped quads, every leftover is re-paired along the shortest alternating path, "
        "and where no complete pairing exists a border edge is split at its midpoint. The input is cleaned "
-       "first (duplicate vertices, degenerate and duplicate faces, unreferenced vertices; cracks of T-junctions "
-       "closed; at an edge with more than two faces, all but the two across which the surface runs on "
-       "straightest are removed; non-manifold vertices split; caps, triangles of no area and single triangles "
-       "folded back onto their neighbours mended by flipping an edge; small patches folded back onto the "
-       "surface laid flat), and the log lists each repair. "
+       "first (duplicate vertices, degenerate and duplicate faces, unreferenced vertices; cracks of T-junctions, "
+       "and the slits faces of no area leave, closed; at an edge with more than two faces, all but the two "
+       "across which the surface runs on straightest are removed; non-manifold vertices split; caps and "
+       "single triangles folded back onto their neighbours mended by flipping an edge; small patches folded "
+       "back onto the surface laid flat), and the log lists each repair. "
        "The layer is replaced by its quads."},
       {kFitmaps, "Compute Fitmaps", "compute_scalar_by_fitmap_per_vertex",
        "Computes the <b>S-fitmap</b> (how fast the error of fitting a plane grows with the radius around each "

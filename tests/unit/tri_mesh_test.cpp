@@ -572,27 +572,33 @@ TEST(Clean, zips_a_crack_of_t_junctions_between_two_patches) {
 }
 
 // A grid vertex moved exactly onto the far edge of one of its triangles (wherever along
-// it), as where CAD tessellations close a T-junction: that triangle has no area. Removed,
-// it left a slit, three border edges that the simplifier kept as a hole's. It is a cap of
-// no height, and flipping its long edge mends it: every face stays, no border is made.
-TEST(Clean, mends_a_triangle_of_no_area_by_a_flip) {
-  for (const double along : {0.5, 0.3, 0.05})
-    for (const bool reversed : {false, true}) {
-      SCOPED_TRACE(std::to_string(along) + (reversed ? ", faces reversed" : ""));
-      TriMesh t = tri_grid(8, 8);
-      push_across(t, 4 * 9 + 4, along, 0.0);
-      if (reversed) std::reverse(t.faces.begin(), t.faces.end());
-      const Index nf = t.n_faces();
-      const CleanReport r = clean(t);
-      EXPECT_EQ(r.removed_degenerate_faces, 0u);
-      EXPECT_EQ(r.flipped_edges, 1u);
-      EXPECT_EQ(t.n_faces(), nf);
-      Index border_edges = 0;
-      for (const auto& adj : triangle_adjacency(t)) border_edges += Index(std::count(adj.begin(), adj.end(), kNone));
-      EXPECT_EQ(border_edges, 4u * 8u);  // the grid's outline only
-      EXPECT_EQ(faces_facing_down(t), 0u);
-      for (const auto& f : t.faces) EXPECT_GT(t.area_normal(f).norm(), 0.0);
-    }
+// it), as where CAD tessellations close a T-junction: that triangle has no area, and
+// removed, it left a slit, three border edges that the simplifier kept as a hole's. The
+// slit is a crack, and closes: the triangle across the far edge is split at the vertex.
+// Split in four, once or twice, the flat triangle is a row of flat triangles on one line,
+// and their slit closes too. No border is left but the grid's outline.
+TEST(Clean, closes_the_slit_a_triangle_of_no_area_leaves) {
+  for (int splits = 0; splits <= 2; ++splits)
+    for (const double along : {0.5, 0.3, 0.05})
+      for (const bool reversed : {false, true}) {
+        SCOPED_TRACE(std::to_string(splits) + " splits, " + std::to_string(along) + (reversed ? ", reversed" : ""));
+        TriMesh t = tri_grid(8, 8);
+        push_across(t, 4 * 9 + 4, along, 0.0);
+        for (int i = 0; i < splits; ++i) t = split_in_four(t);
+        if (reversed) std::reverse(t.faces.begin(), t.faces.end());
+        const Index nf = t.n_faces();
+        const CleanReport r = clean(t);
+        if (splits == 0) {
+          EXPECT_EQ(r.removed_degenerate_faces, 1u);
+          EXPECT_EQ(r.zipped_t_junctions, 1u);
+          EXPECT_EQ(t.n_faces(), nf);  // the flat triangle gone, its neighbour split in two
+        }
+        Index border_edges = 0;
+        for (const auto& adj : triangle_adjacency(t)) border_edges += Index(std::count(adj.begin(), adj.end(), kNone));
+        EXPECT_EQ(border_edges, Index(4 * (8 << splits)));  // the grid's outline only
+        EXPECT_EQ(faces_facing_down(t), 0u);
+        for (const auto& f : t.faces) EXPECT_GT(t.area_normal(f).norm(), 0.0);
+      }
 }
 
 // A grid vertex pushed across an edge exactly onto the vertex beyond it: its triangle lies

@@ -346,21 +346,15 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
   return zipped;
 }
 
-// The squared twice-area at and under which a face of m has no area: relative to its size.
-double no_area2(const TriMesh& m) { return std::pow(1e-12 * bbox_diagonal(m.positions), 4); }
-bool is_flat(const TriMesh& m, const std::array<Index, 3>& t, double no_area2) {
-  return m.area_normal(t).squaredNorm() <= no_area2;
-}
-
-// Faces with a repeated corner, and duplicate faces. Faces of no area with three corners
-// stay for mend_by_edge_flips(): a vertex lying exactly on the far edge of one of its
-// triangles (a T-junction closed by a flat triangle, in CAD tessellations) left a slit
-// where that triangle was removed, which the simplifier then kept as a hole's border.
 void remove_degenerate_and_duplicate_faces(TriMesh& m, CleanReport& r) {
+  const double diag = bbox_diagonal(m.positions);
+  const double min_area2 = std::pow(1e-12 * diag, 4);  // squared twice-area, relative to size
   std::vector<std::array<Index, 3>> kept;
   kept.reserve(m.faces.size());
   for (const auto& t : m.faces) {
-    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+    const bool flat = !repeated && m.area_normal(t).squaredNorm() <= min_area2;
+    if (repeated || flat)
       ++r.removed_degenerate_faces;
     else
       kept.push_back(t);
@@ -564,14 +558,11 @@ constexpr double kCapThinness = 1e-3;
 
 // `adj` and `normals` (the faces' unit normals) are kept up to date.
 Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj, std::vector<Vec3>& normals) {
-  const double flat = no_area2(m);
   // The longest edge of a cap, kNone for any other triangle.
   const auto cap_edge = [&](Index f, double& thin) {
     Index longest = 0;
     thin = thinness(m, m.faces[f], longest);
-    // A face of no area is flipped wherever its apex: left, it would be removed, a hole.
-    return thin < kCapThinness && (apex_over_middle(m, m.faces[f], longest) || is_flat(m, m.faces[f], flat)) ? longest
-                                                                                                        : kNone;
+    return thin < kCapThinness && apex_over_middle(m, m.faces[f], longest) ? longest : kNone;
   };
   const auto folded = [&](Index f) {
     for (Index g : adj[f])
@@ -635,18 +626,6 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj, std
   }
   if (stale) adj = adjacency_from(m, corners_around(m));
   return flips;
-}
-
-// Removes the faces of no area that mend_by_edge_flips() left (one on a border, or whose
-// flip would turn a neighbour over); returns whether any was.
-bool remove_flat_faces(TriMesh& m, CleanReport& r) {
-  const double limit = no_area2(m);
-  const auto flat = [&](const std::array<Index, 3>& t) { return is_flat(m, t, limit); };
-  const auto first = std::remove_if(m.faces.begin(), m.faces.end(), flat);
-  r.removed_degenerate_faces += Index(m.faces.end() - first);
-  const bool any = first != m.faces.end();
-  m.faces.erase(first, m.faces.end());
-  return any;
 }
 
 // Moves each vertex of `vs` to the mean of the other corners of its triangles, sweep
@@ -1017,9 +996,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
 
   merge_duplicate_vertices(m, r);
   remove_degenerate_and_duplicate_faces(m, r);
-  const double no_area = no_area2(m);
-  if (std::all_of(m.faces.begin(), m.faces.end(), [&](const auto& t) { return is_flat(m, t, no_area); }))
-    throw InvalidInput(src + ": every face is degenerate (zero area)");
+  if (m.faces.empty()) throw InvalidInput(src + ": every face is degenerate (zero area)");
   std::vector<std::array<Index, 3>> adj;
   {
     // adjacency_from() finds a non-manifold edge as it goes; the repair runs only for a
@@ -1043,11 +1020,6 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
   split_nonmanifold_vertices(m, r);  // faces keep their neighbours
   std::vector<Vec3> normals = unit_normals(m);  // for both mends
   r.flipped_edges = mend_by_edge_flips(m, adj, normals);
-  if (remove_flat_faces(m, r)) {
-    split_nonmanifold_vertices(m, r);  // a face gone from a border fan splits it
-    adj = triangle_adjacency(m);
-    normals = unit_normals(m);
-  }
   r.moved_vertices = unfold_patches(m, adj, normals, r.unfolded_patches);
   remove_unreferenced(m, r);
   // merged copies are not "unreferenced"

@@ -76,14 +76,13 @@ struct CleanReport {
 //! a piece written twice; interior vertices of two sheets that touch stay apart), border
 //! vertices closer than 1e-6 of the bounding-box diagonal merged, cracks closed where the
 //! border vertices of one side lie along the border edges of the other (T-junctions: each
-//! such edge is split at them), faces with a repeated
-//! vertex removed, duplicate faces removed, at an edge with more than
+//! such edge is split at them; the slit a removed face of no area leaves is one), faces
+//! with a repeated vertex or zero area removed, duplicate faces removed, at an edge with more than
 //! two triangles all removed but the two across which the surface runs on straightest,
 //! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
 //! re-oriented consistently within each component, caps (height under 1e-3 of the
-//! longest edge; of no height, wherever the apex) and single triangles folded back onto
-//! their neighbours mended by flipping an edge, faces of no area the flips left removed,
-//! small patches folded back (folded_patches()) laid flat by moving
+//! longest edge) and single triangles folded back onto their neighbours mended by
+//! flipping an edge, small patches folded back (folded_patches()) laid flat by moving
 //! their vertices, and if need be up to eight rings of vertices around them while the
 //! region faces the way the patch's own surroundings do (not those on the border). Only patches that are discs
 //! are tried: a band round a post with an overhanging wall stays.
