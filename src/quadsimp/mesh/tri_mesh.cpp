@@ -234,12 +234,13 @@ bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index,
 // flat, off them by the sagitta when curved (a twentieth of an edge that turns by 25
 // degrees). The simplifier kept such a crack open, a hole's border. A border edge a-b is
 // split at the border vertices that follow a, or b, along it: each further along than the
-// one before, and within kCrackWidth of the edge's length from it. The split gives the
-// other side's edges new vertices along them in turn, and the passes go on until the sides
-// share every edge (kCrackPasses at most). A thin hole, or the sharp corner of a hole, so
-// bounded closes too; a hole's far side is not along its edges. The edge's triangle is
-// fanned out from its third corner; a split that would give that corner an edge it has
-// already is left. Returns the number of vertices taken into edges.
+// one before, no further from it than an arc through a and b whose middle is kCrackSagitta
+// of its length off it, and the walk reaching the other end or going on past it (a hole's
+// sharp corner does not). The split gives the other side's edges new vertices along them
+// in turn, and the passes go on until the sides share every edge (kCrackPasses at most). A
+// thin hole so bounded closes too; a hole's far side is not along its edges. The edge's
+// triangle is fanned out from its third corner; a split that would give that corner an
+// edge it has already is left. Returns the number of vertices taken into edges.
 constexpr double kCrackSagitta = 0.125;
 constexpr int kCrackPasses = 16;
 Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
@@ -265,8 +266,9 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
           along[fill[a]++] = b;
           along[fill[b]++] = a;
         }
-    const CornersAround corners = corners_around(m);
+    CornersAround corners;  // built for the first split tried
     const auto has_edge = [&](Index u, Index w) {
+      if (corners.start.empty()) corners = corners_around(m);
       for (Index i = corners.start[u]; i < corners.start[u + 1]; ++i) {
         const auto& t = m.faces[corners.corner[i] / 3];
         if (t[0] == w || t[1] == w || t[2] == w) return true;
@@ -321,8 +323,8 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
         }
         if (cut.empty()) continue;
         std::sort(cut.begin(), cut.end());
-        if (std::adjacent_find(cut.begin(), cut.end(), [](const auto& x, const auto& y) { return !(x.first < y.first); }) !=
-                cut.end() ||
+        const auto same_place = [](const auto& x, const auto& y) { return !(x.first < y.first); };
+        if (std::adjacent_find(cut.begin(), cut.end(), same_place) != cut.end() ||
             std::any_of(cut.begin(), cut.end(), [&](const auto& c) { return has_edge(o, c.second); }))
           continue;
         Index prev = a;
@@ -1032,7 +1034,8 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
     note(r.merged_duplicate_vertices, "duplicate vertices merged");
     note(r.merged_close_vertices, "vertices merged with a border vertex closer than 1e-6 of the bounding-box diagonal");
     note(r.zipped_t_junctions,
-         "border vertices lying along a border edge across a crack (T-junctions) taken into that edge, closing the crack");
+         "border vertices lying along a border edge across a crack (T-junctions) taken into that edge, "
+         "closing the crack");
     note(r.removed_degenerate_faces, "degenerate faces removed");
     note(r.removed_duplicate_faces, "duplicate faces removed");
     note(r.removed_nonmanifold_faces,

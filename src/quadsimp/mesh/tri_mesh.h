@@ -64,9 +64,9 @@ struct CleanReport {
   //! Whether the faces themselves changed (a vertex merged, split or moved, a face
   //! removed or turned); dropping unreferenced vertices does not count.
   bool changed_faces() const {
-    return merged_duplicate_vertices + merged_close_vertices + zipped_t_junctions + removed_degenerate_faces + removed_duplicate_faces +
-               removed_nonmanifold_faces + split_nonmanifold_vertices + flipped_faces + flipped_edges +
-               moved_vertices > 0;
+    return merged_duplicate_vertices + merged_close_vertices + zipped_t_junctions + removed_degenerate_faces +
+               removed_duplicate_faces + removed_nonmanifold_faces + split_nonmanifold_vertices + flipped_faces +
+               flipped_edges + moved_vertices > 0;
   }
 };
 
