@@ -2,10 +2,12 @@
 // Runs the real quadsimp binary: exit codes, messages, and what lands on disk.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -205,6 +207,48 @@ TEST_F(Cli, a_folded_patch_is_laid_flat_and_reported) {
   EXPECT_NE(r.out.find("folded.ply: 1 patches of triangles folded back onto the surface laid flat"), std::string::npos)
       << r.out;
   EXPECT_TRUE(qs::read_mesh(p("quad.ply")).is_pure_quad());
+}
+
+TEST_F(Cli, a_crack_of_t_junctions_in_an_stl_is_closed_and_reported) {
+  // Two patches of a bowl meshed apart, as a CAD tessellation writes them to STL: every
+  // triangle with its own corners, and along the common side every third vertex of the
+  // finer patch a copy of one of the coarser's, the others along its edges. Welded, the
+  // side is a crack; closed, the result's only border is the bowl's outline.
+  TriMesh t = fixtures::tri_grid(8, 8);
+  const TriMesh fine = fixtures::tri_grid(8, 12);
+  const Index offset = t.n_vertices();
+  for (const Vec3& x : fine.positions) t.positions.push_back(x + Vec3(1, 0, 0));
+  for (const auto& f : fine.faces) t.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  for (Vec3& x : t.positions) x.z() = 0.5 * ((x.x() - 1) * (x.x() - 1) + (x.y() - 0.5) * (x.y() - 0.5));
+  std::string stl = "solid patches\n";
+  for (const auto& f : t.faces) {
+    stl += "facet normal 0 0 0\nouter loop\n";
+    for (Index v : f) {
+      char line[96];
+      std::snprintf(line, sizeof line, "vertex %.9g %.9g %.9g\n", t.positions[v].x(), t.positions[v].y(),
+                    t.positions[v].z());
+      stl += line;
+    }
+    stl += "endloop\nendfacet\n";
+  }
+  const std::string in = write("patches.stl", stl + "endsolid patches\n");
+  const CliRun r = run("simplify " + in + " " + p("quad.obj") + " --faces 40");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("taken into that edge, closing the crack"), std::string::npos) << r.out;
+  const qs::MeshFile out = qs::read_mesh(p("quad.obj"));
+  ASSERT_TRUE(out.is_pure_quad());
+  std::map<std::pair<Index, Index>, int> edges;
+  for (const auto& q : out.quads)
+    for (int k = 0; k < 4; ++k) ++edges[std::minmax(q[k], q[(k + 1) % 4])];
+  const auto on_outline = [&](Index v) {
+    const Vec3& x = out.positions[v];
+    return std::min({std::abs(x.x()), std::abs(x.x() - 2), std::abs(x.y()), std::abs(x.y() - 1)}) < 1e-6;
+  };
+  for (const auto& [e, faces] : edges) {
+    if (faces == 1) {
+      EXPECT_TRUE(on_outline(e.first) && on_outline(e.second)) << "a border edge inside the bowl";
+    }
+  }
 }
 
 TEST_F(Cli, bad_input_exits_1_and_writes_nothing) {
