@@ -286,8 +286,8 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
         const double len2 = ab.squaredNorm();
         if (!(len2 > 0)) continue;
         cut.clear();
-        // From `from`, the border vertices each further along (towards t = 1 from a, t = 0
-        // from b), the nearest step first.
+        // From a, then from b, the border vertices each further along (towards t = 1 from a,
+        // t = 0 from b), the nearest step first.
         for (const bool from_a : {true, false}) {
           const Index end = from_a ? b : a;
           const std::size_t before = cut.size();
