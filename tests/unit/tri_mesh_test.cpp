@@ -625,9 +625,9 @@ TEST(Clean, keeps_apart_a_fold_pushed_exactly_onto_a_vertex_and_lays_it_flat) {
     }
 }
 
-// A surface written twice, each copy with its own vertices, the second turned over (a
-// double-sided export): every vertex of a piece has a copy, so the copies are one vertex,
-// and the second surface's faces are duplicates.
+// A surface written twice, each copy with its own vertices, the second as it is or turned
+// over (a double-sided export): every vertex of a piece has a copy, so the copies are one
+// vertex, and the second surface's faces are duplicates.
 TEST(Clean, merges_a_surface_written_twice) {
   const TriMesh sphere = tri_sphere(8, 10);
   for (const bool turned : {false, true}) {
