@@ -77,8 +77,8 @@ struct CleanReport {
 //! vertices closer than 1e-6 of the bounding-box diagonal merged, cracks closed where the
 //! border vertices of one side lie along the border edges of the other (T-junctions: each
 //! such edge is split at them; the slit a removed face of no area leaves is one), faces
-//! with a repeated vertex or zero area removed, duplicate faces removed, at an edge with more than
-//! two triangles all removed but the two across which the surface runs on straightest,
+//! with a repeated vertex or zero area removed, duplicate faces removed, at an edge with
+//! more than two triangles all removed but the two across which the surface runs on straightest,
 //! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
 //! re-oriented consistently within each component, caps (height under 1e-3 of the
 //! longest edge) and single triangles folded back onto their neighbours mended by
