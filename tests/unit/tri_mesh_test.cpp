@@ -571,6 +571,20 @@ TEST(Clean, zips_a_crack_of_t_junctions_between_two_patches) {
   EXPECT_FALSE(r.changed_faces());
 }
 
+// A crack one vertex long, v along edge a-b of triangle (a, b, o), where v is a corner of
+// a triangle with o already: splitting a-b at v would give o-v a third triangle, and
+// cleaning would then remove one of them (a non-manifold edge). The crack stays as it is.
+TEST(Clean, leaves_a_crack_whose_split_would_give_an_edge_a_third_triangle) {
+  TriMesh t;
+  t.positions = {{0, 0, 0}, {2, 0, 0}, {1, -1, 0}, {1, 0.05, 0}, {1, 1, 0}, {1, -0.5, -1}};
+  const Index a = 0, b = 1, o = 2, v = 3, p = 4, q = 5;
+  t.faces = {{a, b, o}, {v, a, p}, {b, v, p}, {o, v, q}};
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.zipped_t_junctions, 0u);
+  EXPECT_EQ(r.removed_nonmanifold_faces, 0u);
+  EXPECT_EQ(t.n_faces(), 4u);
+}
+
 // A grid vertex moved exactly onto the far edge of one of its triangles (wherever along
 // it), as where CAD tessellations close a T-junction: that triangle has no area, and
 // removed, it left a slit, three border edges that the simplifier kept as a hole's. The
