@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <numeric>
+#include <set>
 #include <utility>
 
 #include "quadsimp/util/errors.h"
@@ -247,7 +248,9 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
   const auto& P = m.positions;
   Index zipped = 0;
   std::vector<Index> start, along, fill;
+  std::vector<char> leaves;  // per entry of `along`: whether its border edge runs from the vertex
   std::vector<std::pair<double, Index>> cut;  // the vertices an edge is split at, by where along it
+  std::vector<Index> fan;                     // a, the vertices of `cut`, b
   for (int pass = 0; pass < kCrackPasses; ++pass) {
     // Each vertex's neighbours along the border, as compressed rows.
     start.assign(m.n_vertices() + 1, 0);
@@ -258,13 +261,14 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
     if (!any_border) break;
     std::partial_sum(start.begin(), start.end(), start.begin());
     along.resize(start.back());
+    leaves.resize(start.back());
     fill.assign(start.begin(), start.end() - 1);
     for (Index f = 0; f < m.n_faces(); ++f)
       for (Index k = 0; k < 3; ++k)
         if (adj[f][k] == kNone) {
           const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
-          along[fill[a]++] = b;
-          along[fill[b]++] = a;
+          leaves[fill[a]] = 1, along[fill[a]++] = b;
+          leaves[fill[b]] = 0, along[fill[b]++] = a;
         }
     CornersAround corners;  // built for the first split tried
     const auto has_edge = [&](Index u, Index w) {
@@ -276,6 +280,8 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
       return false;
     };
     std::vector<char> taken(m.n_vertices(), 0);  // split into an edge this pass
+    std::set<std::pair<Index, Index>> made;      // the edges this pass's fans made (lowest vertex first)
+    const auto key = [](Index x, Index y) { return std::pair<Index, Index>(std::min(x, y), std::max(x, y)); };
     Index zipped_now = 0;
     const Index nf = m.n_faces();
     for (Index f = 0; f < nf; ++f)
@@ -298,6 +304,12 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
             Index next = kNone;
             double t_next = 0;
             for (Index i = start[v]; i < start[v + 1]; ++i) {
+              // The far side of a crack runs against a-b: from b back to a. A walk along a
+              // border running the other way (around a hole, through a vertex where holes
+              // touch) made a fan edge run the way its other triangle does, and glmark2's
+              // bunny, split once, with a tenth of its triangles taken out at random, could
+              // no longer be oriented.
+              if (leaves[i] != !from_a) continue;
               const Index w = along[i];
               if (w == a || w == b || w == o || taken[w]) {
                 crack = crack || (w == end && cut.size() > before);
@@ -319,25 +331,36 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
             cut.push_back({t_next, next});
             v = next, t_v = t_next;
           }
-          if (!crack) cut.resize(before);  // a hole's corner, not a crack
+          if (crack) break;  // the fan's edges are this walk's
+          cut.resize(before);  // a hole's corner, not a crack
         }
         if (cut.empty()) continue;
         std::sort(cut.begin(), cut.end());
+        // The fan's edges along a-b are the walk's, and the one from its last vertex to the
+        // end it went past, which must not be an edge already; nor may another fan of this
+        // pass have made any of its edges. Either way an edge got a third triangle: with a
+        // tenth of the triangles of glmark2's bunny (split twice) taken out at random, the
+        // bunny could then no longer be oriented.
+        const auto new_or_border = [&](Index x, Index y) {
+          return !has_edge(x, y) || std::find(along.begin() + start[x], along.begin() + start[x + 1], y) !=
+                                        along.begin() + start[x + 1];
+        };
+        fan.assign(1, a);
+        for (const auto& c : cut) fan.push_back(c.second);
+        fan.push_back(b);
         const auto same_place = [](const auto& x, const auto& y) { return !(x.first < y.first); };
-        if (std::adjacent_find(cut.begin(), cut.end(), same_place) != cut.end() ||
-            std::any_of(cut.begin(), cut.end(), [&](const auto& c) { return has_edge(o, c.second); }))
-          continue;
-        Index prev = a;
-        for (std::size_t x = 0; x < cut.size(); ++x) {
-          const std::array<Index, 3> face{prev, cut[x].second, o};
-          if (x == 0)
-            m.faces[f] = face;
-          else
-            m.faces.push_back(face);
-          prev = cut[x].second;
-          taken[prev] = 1;
+        bool ok = std::adjacent_find(cut.begin(), cut.end(), same_place) == cut.end() &&
+                  new_or_border(a, fan[1]) && new_or_border(fan[fan.size() - 2], b);
+        for (std::size_t x = 0; ok && x + 1 < fan.size(); ++x)
+          ok = !made.count(key(fan[x], fan[x + 1])) && (x == 0 || (!has_edge(o, fan[x]) && !made.count(key(o, fan[x]))));
+        if (!ok) continue;
+        m.faces[f] = {fan[0], fan[1], o};
+        for (std::size_t x = 1; x + 1 < fan.size(); ++x) {
+          m.faces.push_back({fan[x], fan[x + 1], o});
+          taken[fan[x]] = 1;
+          made.insert(key(o, fan[x]));
         }
-        m.faces.push_back({prev, b, o});
+        for (std::size_t x = 0; x + 1 < fan.size(); ++x) made.insert(key(fan[x], fan[x + 1]));
         zipped_now += Index(cut.size());
         break;  // one edge per triangle and pass
       }
