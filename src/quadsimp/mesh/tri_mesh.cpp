@@ -39,6 +39,15 @@ CornersAround corners_around(const TriMesh& m) {
   return a;
 }
 
+// Whether u and w are corners of one face (an edge, in a manifold mesh).
+bool share_a_face(const TriMesh& m, const CornersAround& around, Index u, Index w) {
+  for (Index i = around.start[u]; i < around.start[u + 1]; ++i) {
+    const auto& t = m.faces[around.corner[i] / 3];
+    if (t[0] == w || t[1] == w || t[2] == w) return true;
+  }
+  return false;
+}
+
 // The neighbour across edge a-b is the other face around a that also has b. Linear,
 // and twice as fast as sorting the 3F edges, which was a tenth of loading a mesh. With
 // `nonmanifold`, each edge's faces are counted until one edge has more than two, which
@@ -273,11 +282,7 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
     CornersAround corners;  // built for the first split tried
     const auto has_edge = [&](Index u, Index w) {
       if (corners.start.empty()) corners = corners_around(m);
-      for (Index i = corners.start[u]; i < corners.start[u + 1]; ++i) {
-        const auto& t = m.faces[corners.corner[i] / 3];
-        if (t[0] == w || t[1] == w || t[2] == w) return true;
-      }
-      return false;
+      return share_a_face(m, corners, u, w);
     };
     std::vector<char> taken(m.n_vertices(), 0);  // split into an edge this pass
     std::set<std::pair<Index, Index>> made;      // the edges this pass's fans made (lowest vertex first)
@@ -615,10 +620,7 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj, std
       const Index o = tg[0] != a && tg[0] != b ? tg[0] : tg[1] != a && tg[1] != b ? tg[1] : tg[2];
       if (o == c || touched[a] || touched[b] || touched[c] || touched[o]) return false;
       if (around.start.empty()) around = corners_around(m);
-      for (Index i = around.start[c]; i < around.start[c + 1]; ++i) {  // c-o an edge already
-        const auto& u = m.faces[around.corner[i] / 3];
-        if (u[0] == o || u[1] == o || u[2] == o) return false;
-      }
+      if (share_a_face(m, around, c, o)) return false;  // c-o an edge already
       const std::array<Index, 3> f2{c, a, o}, g2{c, o, b};
       const Vec3 ng = m.area_normal(tg);
       if (m.area_normal(f2).dot(ng) <= 0 || m.area_normal(g2).dot(ng) <= 0 || !better(f2, g2, tg)) return false;
