@@ -287,77 +287,70 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
     std::vector<char> taken(m.n_vertices(), 0);  // split into an edge this pass
     std::set<std::pair<Index, Index>> made;      // the edges this pass's fans made (lowest vertex first)
     const auto key = [](Index x, Index y) { return std::pair<Index, Index>(std::min(x, y), std::max(x, y)); };
+    // Into `cut`, the border vertices that follow a (or b) along a-b, each further along
+    // than the one before, the nearest step first. True when the walk reaches the other
+    // end or goes on past it: a crack, not a hole's corner.
+    const auto walk = [&](Index a, Index b, Index o, bool from_a) {
+      const Vec3 ab = P[b] - P[a];
+      const double len2 = ab.squaredNorm();
+      cut.clear();
+      if (!(len2 > 0)) return false;
+      Index v = from_a ? a : b;
+      double t_v = from_a ? 0.0 : 1.0;
+      for (;;) {
+        Index next = kNone;
+        double t_next = 0;
+        for (Index i = start[v]; i < start[v + 1]; ++i) {
+          // The far side of a crack runs against a-b: from b back to a. A walk along a
+          // border running the other way (around a hole, through a vertex where holes
+          // touch) made a fan edge run the way its other triangle does, and glmark2's
+          // bunny, split once, with a tenth of its triangles taken out at random, could no
+          // longer be oriented.
+          if (leaves[i] != !from_a) continue;
+          const Index w = along[i];
+          if (w == (from_a ? b : a) && !cut.empty()) return true;
+          if (w == a || w == b || w == o || taken[w]) continue;
+          const double t = (P[w] - P[a]).dot(ab) / len2;
+          if (from_a ? t >= 1 : t <= 0) {
+            if (!cut.empty()) return true;
+            continue;
+          }
+          const double reach = 4 * kCrackSagitta * t * (1 - t);  // an arc's offset from its chord
+          if (!(from_a ? t > t_v : t < t_v) || (P[a] + t * ab - P[w]).squaredNorm() > reach * reach * len2)
+            continue;
+          if (next == kNone || std::abs(t - t_v) < std::abs(t_next - t_v)) next = w, t_next = t;
+        }
+        if (next == kNone) return false;
+        cut.push_back({t_next, next});
+        v = next, t_v = t_next;
+      }
+    };
+    // An edge a fan may make: one no other fan of this pass made, and new or, for the
+    // walk's own edges, on the border. Else an edge got a third triangle: with a tenth of
+    // the triangles of glmark2's bunny (split twice) taken out at random, the bunny could
+    // then no longer be oriented.
+    const auto may_make = [&](Index x, Index y, bool border_too) {
+      if (made.count(key(x, y))) return false;
+      if (!has_edge(x, y)) return true;
+      return border_too && std::find(along.begin() + start[x], along.begin() + start[x + 1], y) !=
+                               along.begin() + start[x + 1];
+    };
     Index zipped_now = 0;
     const Index nf = m.n_faces();
     for (Index f = 0; f < nf; ++f)
       for (Index k = 0; k < 3; ++k) {
         if (adj[f][k] != kNone) continue;
         const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3], o = m.faces[f][(k + 2) % 3];
-        const Vec3 ab = P[b] - P[a];
-        const double len2 = ab.squaredNorm();
-        if (!(len2 > 0)) continue;
-        cut.clear();
-        // From a, then from b, the border vertices each further along (towards t = 1 from a,
-        // t = 0 from b), the nearest step first.
-        for (const bool from_a : {true, false}) {
-          const Index end = from_a ? b : a;
-          const std::size_t before = cut.size();
-          Index v = from_a ? a : b;
-          double t_v = from_a ? 0.0 : 1.0;
-          bool crack = false;  // the walk reached the other end, or went on past it
-          for (;;) {
-            Index next = kNone;
-            double t_next = 0;
-            for (Index i = start[v]; i < start[v + 1]; ++i) {
-              // The far side of a crack runs against a-b: from b back to a. A walk along a
-              // border running the other way (around a hole, through a vertex where holes
-              // touch) made a fan edge run the way its other triangle does, and glmark2's
-              // bunny, split once, with a tenth of its triangles taken out at random, could
-              // no longer be oriented.
-              if (leaves[i] != !from_a) continue;
-              const Index w = along[i];
-              if (w == a || w == b || w == o || taken[w]) {
-                crack = crack || (w == end && cut.size() > before);
-                continue;
-              }
-              const double t = (P[w] - P[a]).dot(ab) / len2;
-              if (from_a ? t >= 1 : t <= 0) {
-                crack = crack || cut.size() > before;
-                continue;
-              }
-              const double reach = 4 * kCrackSagitta * t * (1 - t);  // an arc's offset from its chord
-              if (!(from_a ? t > t_v : t < t_v) || (P[a] + t * ab - P[w]).squaredNorm() > reach * reach * len2)
-                continue;
-              if (next == kNone || std::abs(t - t_v) < std::abs(t_next - t_v)) next = w, t_next = t;
-            }
-            if (crack || next == kNone ||
-                std::any_of(cut.begin(), cut.end(), [&](const auto& c) { return c.second == next; }))
-              break;
-            cut.push_back({t_next, next});
-            v = next, t_v = t_next;
-          }
-          if (crack) break;  // the fan's edges are this walk's
-          cut.resize(before);  // a hole's corner, not a crack
-        }
-        if (cut.empty()) continue;
+        // One walk makes the fan, so that its edges along a-b are the walk's, and the one
+        // from its last vertex to the end it went past.
+        if (!walk(a, b, o, true) && !walk(a, b, o, false)) continue;
         std::sort(cut.begin(), cut.end());
-        // The fan's edges along a-b are the walk's, and the one from its last vertex to the
-        // end it went past, which must not be an edge already; nor may another fan of this
-        // pass have made any of its edges. Either way an edge got a third triangle: with a
-        // tenth of the triangles of glmark2's bunny (split twice) taken out at random, the
-        // bunny could then no longer be oriented.
-        const auto new_or_border = [&](Index x, Index y) {
-          return !has_edge(x, y) || std::find(along.begin() + start[x], along.begin() + start[x + 1], y) !=
-                                        along.begin() + start[x + 1];
-        };
         fan.assign(1, a);
         for (const auto& c : cut) fan.push_back(c.second);
         fan.push_back(b);
-        const auto same_place = [](const auto& x, const auto& y) { return !(x.first < y.first); };
-        bool ok = std::adjacent_find(cut.begin(), cut.end(), same_place) == cut.end() &&
-                  new_or_border(a, fan[1]) && new_or_border(fan[fan.size() - 2], b);
+        bool ok = true;
         for (std::size_t x = 0; ok && x + 1 < fan.size(); ++x)
-          ok = !made.count(key(fan[x], fan[x + 1])) && (x == 0 || (!has_edge(o, fan[x]) && !made.count(key(o, fan[x]))));
+          ok = may_make(fan[x], fan[x + 1], true) && (x == 0 || may_make(o, fan[x], false));
         if (!ok) continue;
         m.faces[f] = {fan[0], fan[1], o};
         for (std::size_t x = 1; x + 1 < fan.size(); ++x) {
