@@ -214,12 +214,7 @@ TEST_F(Cli, a_crack_of_t_junctions_in_an_stl_is_closed_and_reported) {
   // triangle with its own corners, and along the common side every third vertex of the
   // finer patch a copy of one of the coarser's, the others along its edges. Welded, the
   // side is a crack; closed, the result's only border is the bowl's outline.
-  TriMesh t = fixtures::tri_grid(8, 8);
-  const TriMesh fine = fixtures::tri_grid(8, 12);
-  const Index offset = t.n_vertices();
-  for (const Vec3& x : fine.positions) t.positions.push_back(x + Vec3(1, 0, 0));
-  for (const auto& f : fine.faces) t.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
-  for (Vec3& x : t.positions) x.z() = 0.5 * ((x.x() - 1) * (x.x() - 1) + (x.y() - 0.5) * (x.y() - 0.5));
+  const TriMesh t = fixtures::patches_meshed_apart(12, 0.5);
   std::string stl = "solid patches\n";
   for (const auto& f : t.faces) {
     stl += "facet normal 0 0 0\nouter loop\n";

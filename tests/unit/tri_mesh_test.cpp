@@ -542,13 +542,7 @@ TEST(Clean, zips_a_crack_of_t_junctions_between_two_patches) {
       for (const bool reversed : {false, true}) {
         SCOPED_TRACE(std::to_string(fine_side.rows) + (bent ? " rows, bent" : " rows, flat") +
                      (reversed ? ", faces reversed" : ""));
-        TriMesh t = tri_grid(8, 8);
-        const TriMesh fine = tri_grid(8, fine_side.rows);
-        const Index offset = t.n_vertices();
-        for (const Vec3& p : fine.positions) t.positions.push_back(p + Vec3(1, 0, 0));
-        for (const auto& f : fine.faces) t.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
-        if (bent)
-          for (Vec3& p : t.positions) p.z() = 0.5 * ((p.x() - 1) * (p.x() - 1) + (p.y() - 0.5) * (p.y() - 0.5));
+        TriMesh t = patches_meshed_apart(fine_side.rows, bent ? 0.5 : 0.0);
         if (reversed) std::reverse(t.faces.begin(), t.faces.end());
         const Index nf = t.n_faces();
         const CleanReport r = clean(t);
