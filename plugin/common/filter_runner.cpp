@@ -42,11 +42,12 @@ QuadMesh run_simplification(MeshFile layer, const std::string& name, const Simpl
   const ReferenceSurface ref(std::move(in.reference));
   const SimplifyReport r = simplify_input(in, ref, params, progress);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const QuadQuality q = quad_quality(in.quads);
+  const QuadQuality q = quad_quality(in.quads, &ref);
   o.log.push_back(format("quad mesh simplification: %g -> %g quads in %.2f s (", r.initial_faces, r.faces, s) +
                   operations_done(r) +
                   format("); regular %.1f%%, max valence %g", q.regular_percent, q.max_valence));
   if (const std::string why = target_shortfall(r, params.target_faces); !why.empty()) o.log.push_back(why);
+  if (const std::string note = defects_note(q); !note.empty()) o.log.push_back(note);
   o.values = {{"faces", q.faces}, {"vertices", q.vertices}, {"regular_percent", q.regular_percent},
               {"max_valence", q.max_valence}, {"seconds", s}};
   return std::move(in.quads);

@@ -129,12 +129,13 @@ int run_simplify(const SimplifyArgs& a) {
     if (const LogFn log = stderr_log(a.quiet); log && !shortfall.empty()) log(shortfall);
     write_quad_mesh(a.output, in.quads);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const QuadQuality q = quad_quality(in.quads);
+    const QuadQuality q = quad_quality(in.quads, &ref);
+    if (const LogFn log = stderr_log(a.quiet); log)
+      if (const std::string note = defects_note(q); !note.empty()) log(note);
     if (a.json || a.stats) {
       const SurfaceDistance d = surface_distance(in.quads, ref, a.samples);
-      const QuadQuality full = quad_quality(in.quads, &ref);
       if (a.json) {
-        std::string j = to_json(full, &d);
+        std::string j = to_json(q, &d);
         const auto n = [](Index x) { return std::to_string(x); };
         char share[32], seconds[32];
         std::snprintf(share, sizeof share, "%.4f", r.blocked_share);
@@ -151,7 +152,7 @@ int run_simplify(const SimplifyArgs& a) {
         return kOk;
       }
       print_summary(a, q, s, r);
-      print_quality(full, &d);
+      print_quality(q, &d);
       return kOk;
     }
     print_summary(a, q, s, r);

@@ -144,6 +144,22 @@ TEST_F(Cli, a_target_the_mesh_cannot_reach_is_reported) {
   EXPECT_NE(r.out.find("note: the target of 100000 quads is above the "), std::string::npos) << r.out;
 }
 
+TEST_F(Cli, a_result_with_folded_quads_says_so) {
+  // A CAD cylinder of one row of long triangles with fan caps comes out with quads folded
+  // over its rims (README, Limits). The log says how many, unless told to be quiet; a
+  // result of sound quads gets no such note.
+  const std::string cylinder = p("cylinder.ply");
+  write_tri_mesh_ply(cylinder, fixtures::cad_cylinder(64, 1, 2.0));
+  CliRun r = run("simplify " + cylinder + " " + p("c.ply") + " --faces 100");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("note: of the result's 100 quads, "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" folded (bent by more than 90 degrees); see the README's limits"), std::string::npos) << r.out;
+  r = run("simplify " + cylinder + " " + p("c.ply") + " --faces 100 -q");
+  EXPECT_EQ(r.out.find("of the result's"), std::string::npos) << r.out;
+  r = run("simplify " + input_ + " " + p("s.ply") + " --faces 60");
+  EXPECT_EQ(r.out.find("of the result's"), std::string::npos) << r.out;
+}
+
 TEST_F(Cli, a_strip_one_quad_wide_reaches_its_target_by_chord_collapses) {
   TriMesh strip = fixtures::tri_grid(60, 1);
   for (Vec3& q : strip.positions) q = Vec3(q.x(), q.y() / 60, 0.2 * std::sin(M_PI * q.x()));

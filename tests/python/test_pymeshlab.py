@@ -87,6 +87,34 @@ def test_a_target_the_mesh_cannot_reach_is_logged(capfd):
     assert "the target of 100000 quads is above the " in capfd.readouterr().err
 
 
+def cad_cylinder(around=64, height=2.0):
+    """A closed cylinder as CAD tessellations write one: a row of long triangles round its
+    side, each cap a fan round a vertex at its centre."""
+    angle = 2 * np.pi * np.arange(around) / around
+    ring = np.column_stack([np.cos(angle), np.sin(angle), np.zeros(around)])
+    verts = np.vstack([ring, ring + [0, 0, height], [[0, 0, 0], [0, 0, height]]])
+    k, k1 = np.arange(around), (np.arange(around) + 1) % around
+    bottom, top = 2 * around, 2 * around + 1
+    faces = np.vstack([np.column_stack([k, k1, k1 + around]), np.column_stack([k, k1 + around, k + around]),
+                       np.column_stack([np.full(around, bottom), k1, k]),
+                       np.column_stack([np.full(around, top), k + around, k1 + around])])
+    return pymeshlab.Mesh(verts, faces.astype(np.int32))
+
+
+def test_a_result_with_folded_quads_is_logged(capfd):
+    # Quads folded over a CAD cylinder's rims (README, Limits): the log says how many.
+    ms = pymeshlab.MeshSet(verbose=True)
+    ms.add_mesh(cad_cylinder(), "cylinder")
+    ms.meshing_quad_mesh_simplification(targetfacenum=100)
+    assert len(ms.current_mesh().polygonal_face_list()) == 100
+    err = capfd.readouterr().err
+    assert "of the result's 100 quads, " in err
+    assert " folded (bent by more than 90 degrees)" in err
+    ms.add_mesh(open_grid(12), "grid")
+    ms.meshing_quad_mesh_simplification(targetfacenum=60)
+    assert "of the result's" not in capfd.readouterr().err
+
+
 def test_a_strip_one_quad_wide_reaches_its_target_by_chord_collapses(capfd):
     # 60 square cells in a row, bent: only poly-chord collapses can shorten it.
     n = 60

@@ -62,6 +62,19 @@ std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
          n(r.refused_geometry) + " shape; " + n(r.refused_fitmap) + " M-fitmap)";
 }
 
+std::string defects_note(const QuadQuality& q) {
+  std::string parts;
+  const auto add = [&](Index n, const char* what) {
+    if (n == 0) return;
+    parts += (parts.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+  };
+  add(q.folded_faces, "folded (bent by more than 90 degrees)");
+  add(q.flipped_faces, "flipped (facing against the input)");
+  add(q.nonconvex_faces, "non-convex");
+  if (parts.empty()) return {};
+  return "of the result's " + std::to_string(q.faces) + " quads, " + parts + "; see the README's limits";
+}
+
 std::string operations_done(const SimplifyReport& r) {
   const auto n = [](Index x) { return std::to_string(x); };
   return n(r.collapses) + " collapses, " + (r.chord_collapses ? n(r.chord_collapses) + " chord collapses, " : "") +

@@ -3,6 +3,7 @@
 
 #include "quadsimp/convert/prepare_input.h"
 #include "quadsimp/fitmap/fitmap.h"
+#include "quadsimp/metrics/metrics.h"
 #include "quadsimp/simplify/simplify.h"
 
 namespace qs {
@@ -38,6 +39,13 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
 //! kept border and the valence cap can leave a mesh above any target, and a user asking
 //! for 50 quads must not take 568 for a bug.
 std::string target_shortfall(const SimplifyReport& report, Index target_faces);
+
+//! "" when every quad of a result is convex, unfolded and, with a reference surface
+//! measured, faces the way it does; otherwise one sentence for the log counting those that
+//! are not. Uniform runs unfold what they can at the end and adaptive runs refuse folds,
+//! but knife-edged parts and CAD solids of long triangles can leave some (README, Limits),
+//! and a user running a batch should hear of them without asking for statistics.
+std::string defects_note(const QuadQuality& quality);
 
 //! The operations a run did, for a summary line: "N collapses, M rotations", with the
 //! chord collapses between them when there were any.
