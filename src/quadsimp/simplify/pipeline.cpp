@@ -72,7 +72,7 @@ std::string defects_note(const QuadQuality& q) {
   add(q.flipped_faces, "flipped (facing against the input)");
   add(q.nonconvex_faces, "non-convex");
   if (parts.empty()) return {};
-  return "of the result's " + std::to_string(q.faces) + " quads, " + parts + "; see the README's limits";
+  return "of the result's " + std::to_string(q.faces) + " quads, " + parts + "; see Limits in quadsimp's README";
 }
 
 std::string operations_done(const SimplifyReport& r) {
