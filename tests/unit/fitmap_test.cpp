@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <random>
 
 #include <tbb/task_arena.h>
 
@@ -370,6 +371,37 @@ TEST(Adaptive, no_quad_bends_over_the_gargoyles_thin_parts) {
   EXPECT_EQ(q.flipped_faces + q.nonconvex_faces, 0u);
   EXPECT_GE(q.regular_percent, 70.0);
   EXPECT_LE(q.max_valence, 6);
+}
+
+TEST(Adaptive, no_quad_folds_at_the_holes_of_a_damaged_scan) {
+  // A sphere, a torus and a bumpy grid with a tenth of their triangles taken out at
+  // random. While smoothing moves of border vertices were not held to refuse_folds, each of
+  // these runs ended with folded quads at the holes (5 and 3, 6 and 7, 1 and 5; 38 of 48
+  // such runs with 2 to 10% taken out).
+  struct Case {
+    TriMesh mesh;
+    unsigned seed;
+  };
+  for (const Case& c : {Case{tri_sphere(60, 120), 2}, Case{tri_torus(120, 48), 2}, Case{tri_grid(80, 80, 0.3), 1}}) {
+    SCOPED_TRACE(c.mesh.n_faces());
+    MeshFile file{c.mesh.positions, {}, {}};
+    std::mt19937 rng(c.seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (const auto& f : c.mesh.faces)
+      if (u(rng) >= 0.1) file.triangles.push_back(f);
+    const Input in = prepare_input(file, "holes");
+    const ReferenceSurface ref(in.reference);
+    for (const Index target : {300u, 0u}) {
+      SimplifyParams params;
+      params.adaptive = true;
+      params.target_faces = target;
+      params.auto_halt = target == 0;
+      Input run = in;
+      simplify_input(run, ref, params);
+      validate(run.quads);
+      EXPECT_EQ(quad_quality(run.quads, &ref).folded_faces, 0u) << "target " << target;
+    }
+  }
 }
 
 TEST(Adaptive, faces_are_smaller_around_a_bump) {

@@ -105,7 +105,7 @@ class Simplifier {
   }
 
   // Whether faces may take new corner positions (shape_checks.cpp).
-  bool shape_ok(Index f, const Vec3* q, const Vec3& extra_normal, bool bend_check = true) const;
+  bool shape_ok(Index f, const Vec3* q, const Vec3& extra_normal) const;
   bool follows_reference(const Vec3& n, const std::array<Index, 4>& corners, const Vec3* q,
                          const Vec3& extra_normal) const;
   // Whether two corners or more have their feet on or next to a folded-over patch of M0.
