@@ -294,6 +294,13 @@ Index faces_facing_down(const TriMesh& t) {
     n += (t.positions[f[1]] - t.positions[f[0]]).cross(t.positions[f[2]] - t.positions[f[0]]).z() < 0;
   return n;
 }
+
+// Edges with a triangle on one side only.
+Index border_edge_count(const TriMesh& t) {
+  Index n = 0;
+  for (const auto& adj : triangle_adjacency(t)) n += Index(std::count(adj.begin(), adj.end(), kNone));
+  return n;
+}
 }  // namespace
 
 TEST(Clean, flips_the_longest_edge_under_a_cap) {
@@ -549,9 +556,7 @@ TEST(Clean, zips_a_crack_of_t_junctions_between_two_patches) {
         EXPECT_EQ(r.merged_duplicate_vertices, fine_side.copies);
         EXPECT_EQ(r.zipped_t_junctions, fine_side.zipped);
         EXPECT_EQ(t.n_faces(), nf + fine_side.zipped);  // each split triangle made one more
-        Index border_edges = 0;
-        for (const auto& adj : triangle_adjacency(t)) border_edges += Index(std::count(adj.begin(), adj.end(), kNone));
-        EXPECT_EQ(border_edges, Index(16 + 16 + 8 + fine_side.rows));  // bottom, top, and the two outer sides
+        EXPECT_EQ(border_edge_count(t), Index(16 + 16 + 8 + fine_side.rows));  // bottom, top, the outer sides
         EXPECT_EQ(r.flipped_faces, 0u);
       }
   // A hole a cell high and four wide, with its own border all round.
@@ -632,9 +637,7 @@ TEST(Clean, closes_the_slit_a_triangle_of_no_area_leaves) {
           EXPECT_EQ(r.zipped_t_junctions, 1u);
           EXPECT_EQ(t.n_faces(), nf);  // the flat triangle gone, its neighbour split in two
         }
-        Index border_edges = 0;
-        for (const auto& adj : triangle_adjacency(t)) border_edges += Index(std::count(adj.begin(), adj.end(), kNone));
-        EXPECT_EQ(border_edges, Index(4 * (8 << splits)));  // the grid's outline only
+        EXPECT_EQ(border_edge_count(t), Index(4 * (8 << splits)));  // the grid's outline only
         EXPECT_EQ(faces_facing_down(t), 0u);
         for (const auto& f : t.faces) EXPECT_GT(t.area_normal(f).norm(), 0.0);
       }
