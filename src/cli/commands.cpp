@@ -122,16 +122,16 @@ int run_simplify(const SimplifyArgs& a) {
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
-    Input in = load_input(a.input, {}, stderr_log(a.quiet));
+    const LogFn log = stderr_log(a.quiet);
+    Input in = load_input(a.input, {}, log);
     const ReferenceSurface ref(std::move(in.reference));
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
     const std::string shortfall = target_shortfall(r, params.target_faces);
-    if (const LogFn log = stderr_log(a.quiet); log && !shortfall.empty()) log(shortfall);
+    if (log && !shortfall.empty()) log(shortfall);
     write_quad_mesh(a.output, in.quads);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads, &ref);
-    if (const LogFn log = stderr_log(a.quiet); log)
-      if (const std::string note = defects_note(q); !note.empty()) log(note);
+    if (const std::string note = defects_note(q); log && !note.empty()) log(note);
     if (a.json || a.stats) {
       const SurfaceDistance d = surface_distance(in.quads, ref, a.samples);
       if (a.json) {
