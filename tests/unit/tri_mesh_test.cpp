@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <random>
 #include <set>
 
@@ -202,6 +203,30 @@ std::set<std::set<std::array<double, 3>>> triangle_set(const TriMesh& t) {
   return out;
 }
 }  // namespace
+
+TEST(Clean, splits_a_vertex_where_three_fans_meet_into_three) {
+  // Three fans of two triangles each, in three planes, joined only at vertex 0; the
+  // triangles of fan B come first and last in the list, so a fan is not a run of it.
+  TriMesh t;
+  t.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},    // fan A, z = 0
+                 {0, 0, -1}, {0, -1, -1}, {0, -1, 0},           // fan B, x = 0
+                 {-1, 0, 0}, {-1, 0, 1}, {0, 0, 1}};            // fan C, y = 0
+  t.faces = {{0, 4, 5}, {0, 1, 2}, {0, 7, 8}, {0, 2, 3}, {0, 8, 9}, {0, 5, 6}};
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.split_nonmanifold_vertices, 2u);
+  ASSERT_EQ(t.n_faces(), 6u);
+  EXPECT_EQ(t.n_vertices(), 12u);
+  // Each fan keeps its two triangles around one centre of its own, at the old place.
+  std::map<Index, int> triangles_at_centre;
+  for (const auto& f : t.faces) {
+    const auto centre = std::find_if(f.begin(), f.end(), [&](Index v) { return t.positions[v].isZero(); });
+    ASSERT_NE(centre, f.end());
+    ++triangles_at_centre[*centre];
+  }
+  EXPECT_EQ(triangles_at_centre.size(), 3u);
+  for (const auto& [v, n] : triangles_at_centre) EXPECT_EQ(n, 2) << "centre " << v;
+  expect_edge_manifold_and_oriented(t);
+}
 
 TEST(Clean, keeps_the_straightest_pair_of_faces_at_a_nonmanifold_edge) {
   // Two triangles of a plane on edge 0-1, and a fin standing on the same edge, larger
