@@ -144,6 +144,22 @@ TEST_F(Cli, a_target_the_mesh_cannot_reach_is_reported) {
   EXPECT_NE(r.out.find("note: the target of 100000 quads is above the "), std::string::npos) << r.out;
 }
 
+TEST_F(Cli, automatic_halting_that_runs_out_of_collapses_says_so) {
+  // Faces may not grow past F_M / 1000: every collapse is refused before any share of
+  // the surface is added to what the M-fitmap blocks, so the rule never halts the run.
+  CliRun r = run("simplify " + input_ + " " + p("a.ply") + " --adaptive --auto-halt --m-factor 1000");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("note: automatic halting stopped at 108 quads (the input converts to 108) before the "
+                       "M-fitmap blocked its share of the surface: every remaining collapse was refused"),
+            std::string::npos)
+      << r.out;
+  r = run("simplify " + input_ + " " + p("a.ply") + " --adaptive --auto-halt --m-factor 1000 -q");
+  EXPECT_EQ(r.out.find("automatic halting stopped"), std::string::npos) << r.out;
+  // The paper's rule runs until nothing is left: that is its halt, not a shortfall.
+  r = run("simplify " + input_ + " " + p("a.ply") + " --adaptive --auto-halt --m-factor 1000 --halt-share 1");
+  EXPECT_EQ(r.out.find("automatic halting stopped"), std::string::npos) << r.out;
+}
+
 TEST_F(Cli, a_result_with_folded_quads_says_so) {
   // A CAD cylinder of one row of long triangles with fan caps comes out with quads folded
   // over its rims (README, Limits). The log says how many, unless told to be quiet; a

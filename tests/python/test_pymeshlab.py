@@ -87,6 +87,18 @@ def test_a_target_the_mesh_cannot_reach_is_logged(capfd):
     assert "the target of 100000 quads is above the " in capfd.readouterr().err
 
 
+def test_automatic_halting_that_runs_out_of_collapses_is_logged(capfd):
+    # A small grid whose border is kept runs out of collapses before the M-fitmap blocks
+    # its share of the surface: the log says where it stopped and what refused.
+    ms = pymeshlab.MeshSet(verbose=True)
+    ms.add_mesh(open_grid(12), "grid")
+    ms.meshing_quad_mesh_simplification(adaptive=True, autohalt=True, preserveboundary=True)
+    assert is_pure_quad(ms.current_mesh())
+    err = capfd.readouterr().err
+    assert "automatic halting stopped at " in err
+    assert "before the M-fitmap blocked its share of the surface: every remaining collapse was refused" in err
+
+
 def cad_cylinder(around=64, height=2.0):
     """A closed cylinder as CAD tessellations write one: a row of long triangles round its
     side, each cap a fan round a vertex at its centre."""

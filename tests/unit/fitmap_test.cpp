@@ -257,6 +257,7 @@ TEST(Adaptive, m_fitmap_refuses_collapses_that_grow_faces_past_it) {
   EXPECT_EQ(r.collapses, 0u);
   EXPECT_GT(r.refused_fitmap, 0u);
   EXPECT_EQ(q.n_faces(), before);
+  EXPECT_TRUE(r.ran_out);  // blocked from the start: no share was added, nothing was left
   validate(q);
 }
 
@@ -320,6 +321,9 @@ TEST(Adaptive, auto_halt_stops_once_the_m_fitmap_blocks_its_share) {
   EXPECT_GE(at_share.blocked_share, 0.3);
   EXPECT_GT(halted.n_faces(), paper.n_faces());
   EXPECT_GT(until_nothing.blocked_share, at_share.blocked_share);
+  // Halted by the share; the paper's rule ends when nothing is left, which is its halt.
+  EXPECT_FALSE(at_share.ran_out);
+  EXPECT_FALSE(until_nothing.ran_out);
   // The same run stopped by a face target 10% above the halting count had not reached
   // the share (it is measured at steps down to 1% of the faces; near 0.3 it wavers by
   // about 1%: measured 0.284 at 373 quads, 0.303 at 350, 0.3015 at 339 where it halted),

@@ -417,6 +417,7 @@ SimplifyReport Simplifier::run() {
     if (!opt_.chord_collapses || target == 0 || m_.n_faces() <= target || rep_.cancelled || !collapse_chords()) break;
   }
   if (opt_.adaptive && !halted) rep_.blocked_share = blocked_share();
+  rep_.ran_out = measure && !halted && !rep_.cancelled;
   if (opt_.unfold && !opt_.refuse_folds && !rep_.cancelled) unfold();
   m_.compact();
   rep_.faces = m_.n_faces();

@@ -119,6 +119,10 @@ struct SimplifyReport {
   Index refused_topology = 0, refused_valence = 0, refused_geometry = 0, refused_fitmap = 0;
   //! Adaptive mode: share of the surface the M-fitmap blocked when the run ended.
   double blocked_share = 0;
+  //! Automatic halting by share: the run ended because every remaining collapse was
+  //! refused, before the M-fitmap blocked halt_share of the surface more than it did at
+  //! the start (a noisy input, an input already as coarse as it can go).
+  bool ran_out = false;
   //! Automatic halting: the halting count predicted from the fitmaps before the run
   //! (0 otherwise, or with nothing to go by).
   double predicted_faces = 0;
