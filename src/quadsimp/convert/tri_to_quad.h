@@ -20,6 +20,7 @@ struct ConvertReport {
   Index parity_splits = 0;     //!< border edges split so that every component is even
   Index paired_greedy = 0;     //!< triangles paired by the greedy pass
   Index paired_augmented = 0;  //!< triangles paired by re-pairing along paths
+  Index paired_blossoms = 0;   //!< of those, paired by Edmonds' algorithm after the searches
   Index border_splits = 0;     //!< border edges split where no pairing existed
   bool refined = false;        //!< fell back to one refinement step
   Index quads = 0;
@@ -36,9 +37,10 @@ struct ConvertReport {
 //! 2. Greedy matching of adjacent triangles, best quad first (score: mean over the
 //!    corners of 1-|cos angle|; non-convex or strongly bent pairs are not merged).
 //! 3. Each leftover triangle is paired by re-pairing along the shortest alternating
-//!    path to another leftover (TPC*10's triangle migration, as an augmenting path).
-//!    Where no pairing exists, the leftover is carried to the border instead and a
-//!    border edge is split at its midpoint.
+//!    path to another leftover (TPC*10's triangle migration, as an augmenting path);
+//!    what those searches miss (paths through odd cycles), Edmonds' blossom algorithm
+//!    pairs. Where no pairing exists, the leftover is carried to the border instead and
+//!    a border edge is split at its midpoint.
 //! 4. If anything is still unpaired, one refinement step splits every quad into four
 //!    and every triangle into three quads (edge midpoints, triangle centroids, quad
 //!    diagonal midpoints: all on the input surface).
