@@ -127,13 +127,13 @@ Index augment(Index u, const std::vector<std::array<Index, 3>>& adj, std::vector
   return kNone;
 }
 
-// Pairs what the breadth-first searches left, where the graph of triangles allows it:
-// Edmonds' blossom algorithm (Boost.Graph), which the searches are not, started from the
-// pairs found so far. Returns the triangles it paired. On noisy scans the searches, even
-// with their moves, left a few triangles of a closed surface (whose pairing always
-// exists) unpaired in about one copy in ten, and the refinement that followed made four
-// times the quads; so it runs only when something is left, and the conversions of clean
-// inputs keep the pairs they had.
+// Pairs what the breadth-first searches left, wherever the graph of triangles allows:
+// Edmonds' blossom algorithm (Boost.Graph) finds the paths through odd cycles that they
+// miss. It starts from the pairs found so far and returns the triangles it paired. On
+// noisy scans the searches, moves and all, left a few triangles of a closed surface
+// (whose pairing always exists) unpaired in about one copy in ten, and the refinement
+// that followed made four times the quads. It runs only when something is left, so the
+// conversions of clean inputs keep the pairs they had (bench/RESULTS.md, "Noisy scans").
 Index pair_through_blossoms(const std::vector<std::array<Index, 3>>& adj, std::vector<Index>& mate) {
   using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS>;
   using Vertex = boost::graph_traits<Graph>::vertex_descriptor;
