@@ -71,7 +71,8 @@ std::vector<ParamSpec> params_of(FilterId id) {
       {kSimplify, "AutoHalt", "Automatic halting (adaptive)", ParamKind::Bool, 0, 0, 1,
        "Adaptive mode only: ignore the target and stop once the faces whose collapses the M-fitmap refuses cover "
        "the halting share of the surface (the paper runs until none is allowed, which coarsens the rest far past "
-       "its error balance)."},
+       "its error balance). Where every remaining collapse is refused first (a noisy scan, a small mesh), it "
+       "stops there, and the log says so."},
       {kSimplify, "HaltShare", "Halting share (automatic halting)", ParamKind::Float, SimplifyParams().halt_share, 0.001, 1,
        "Automatic halting: the share of the surface the M-fitmap may block, beyond what it blocked before the "
        "first collapse, before simplification stops (0.15: the bunny, gargoyle and armadillo stop near the "
