@@ -557,6 +557,33 @@ TEST(Clean, lays_flat_two_split_slivers_side_by_side_whichever_comes_first) {
   }
 }
 
+TEST(Clean, lays_flat_two_folds_that_each_keep_the_other_in_its_rings) {
+  // Two columns of a grid, two apart, each pushed past its neighbours: each fold's rings
+  // reach the other, still folded, so no try of either left a region without a triangle
+  // turned back, and both stayed (as around folds on a noisy scan). The last pass lays
+  // each flat where that leaves fewer defects.
+  for (const double cells : {1.5, 3.5}) {
+    SCOPED_TRACE(cells);
+    constexpr int n = 64;
+    const TriMesh grid = tri_grid(n, n);
+    TriMesh t = grid;
+    for (int j = 30; j < 35; ++j)
+      for (int column : {30, 32}) t.positions[j * (n + 1) + column].x() += cells / n;
+    ASSERT_EQ(faces_facing_down(t), 20u);
+    const CleanReport r = clean(t);
+    EXPECT_EQ(r.unfolded_patches, 2u);
+    EXPECT_EQ(faces_facing_down(t), 0u);
+    EXPECT_EQ(t.faces, grid.faces);
+    // The first lies flat around the second still folded, so the grid is not exactly
+    // restored; every vertex ends within the push of its place, and far ones stay.
+    const Vec3 folds = grid.positions[32 * (n + 1) + 31];
+    for (Index v = 0; v < t.n_vertices(); ++v) {
+      EXPECT_LT((t.positions[v] - grid.positions[v]).norm(), cells / n) << v;
+      if ((grid.positions[v] - folds).norm() > 16.0 / n) EXPECT_EQ(t.positions[v], grid.positions[v]) << v;
+    }
+  }
+}
+
 // Two patches meshed apart, as CAD tessellations do: a grid of 8 x 8 cells and, beside
 // it, one of 8 x 16 or 8 x 12 cells, so that along their common side every other vertex of
 // the finer one is a copy of the coarser one's, or only every third. The others lie along
