@@ -575,9 +575,11 @@ TEST(Clean, lays_flat_two_folds_that_each_keep_the_other_in_its_rings) {
     EXPECT_EQ(faces_facing_down(t), 0u);
     EXPECT_EQ(t.faces, grid.faces);
     // The first lies flat around the second still folded, so the grid is not exactly
-    // restored; every vertex ends within the push of its place, and far ones stay.
+    // restored (measured: up to 0.92 and 2.15 cells off); every vertex ends in the plane,
+    // within the push of its place, and far ones stay.
     const Vec3 folds = grid.positions[32 * (n + 1) + 31];
     for (Index v = 0; v < t.n_vertices(); ++v) {
+      EXPECT_EQ(t.positions[v].z(), 0.0) << v;  // in the grid's plane
       EXPECT_LT((t.positions[v] - grid.positions[v]).norm(), cells / n) << v;
       if ((grid.positions[v] - folds).norm() > 16.0 / n) EXPECT_EQ(t.positions[v], grid.positions[v]) << v;
     }
