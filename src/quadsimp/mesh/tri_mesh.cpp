@@ -851,11 +851,11 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
       for (Index v : vs) before.push_back(P[v]);
       const Index defects_before = strict ? 0 : defects_in_region(facing);
       move_to_neighbour_means(m, around, vs, 1e-9 * extent);
-      const bool flat = strict ? std::all_of(region.begin(), region.end(),
-                                             [&](Index f) { return defects_of(f, facing) == 0; })
-                               : std::all_of(region.begin(), region.end(),
-                                             [&](Index f) { return patch[f] != p || defects_of(f, facing) == 0; }) &&
-                                     defects_in_region(facing) < defects_before;
+      // Strict: every triangle of the region sound. Last try: the patch's own, and fewer
+      // defects in the region than before.
+      bool flat = true;
+      for (Index f : region) flat = flat && ((!strict && patch[f] != p) || defects_of(f, facing) == 0);
+      if (!strict) flat = flat && defects_in_region(facing) < defects_before;
       if (flat) {
         ++mended, moved += Index(vs.size());
         laid[p] = 1;
