@@ -55,15 +55,16 @@ std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
   if (target_faces > r.initial_faces)
     return "the target of " + n(target_faces) + " quads is above the " + n(r.initial_faces) +
            " the input converts to: nothing was simplified (the result is the conversion)";
-  const std::string refusals = "every remaining collapse was refused (refusals over the run: " +
-                               n(r.refused_topology) + " topology, e.g. holes and kept borders; " +
-                               n(r.refused_valence) + " valence cap; " + n(r.refused_geometry) + " shape; " +
-                               n(r.refused_fitmap) + " M-fitmap)";
+  const auto refusals = [&] {
+    return "every remaining collapse was refused (refusals over the run: " + n(r.refused_topology) +
+           " topology, e.g. holes and kept borders; " + n(r.refused_valence) + " valence cap; " +
+           n(r.refused_geometry) + " shape; " + n(r.refused_fitmap) + " M-fitmap)";
+  };
   if (target_faces == 0 && r.ran_out)
     return "automatic halting stopped at " + n(r.faces) + " quads (the input converts to " + n(r.initial_faces) +
-           ") before the M-fitmap blocked its share of the surface: " + refusals;
+           ") before the M-fitmap blocked its share of the surface: " + refusals();
   if (target_faces == 0 || r.faces <= target_faces || r.cancelled) return {};
-  return "stopped at " + n(r.faces) + " quads, above the target of " + n(target_faces) + ": " + refusals;
+  return "stopped at " + n(r.faces) + " quads, above the target of " + n(target_faces) + ": " + refusals();
 }
 
 std::string defects_note(const QuadQuality& q) {
