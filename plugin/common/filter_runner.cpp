@@ -107,6 +107,7 @@ void run_quality(const MeshFile& quads, const std::string& quads_name, const Mes
               {"nonconvex_faces", qq.nonconvex_faces},
               {"flipped_faces", qq.flipped_faces},
               {"folded_faces", qq.folded_faces},
+              {"two_quad_pieces", qq.two_quad_pieces},
               {"hausdorff_e3", 1e3 * d.hausdorff},
               {"rms_e3", 1e3 * d.rms},
               {"mean_to_reference_e3", 1e3 * d.mean_to_ref},

@@ -15,6 +15,7 @@
 #include "quadsimp/io/mesh_io.h"
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/metrics/metrics.h"
+#include "quadsimp/simplify/pipeline.h"
 
 using namespace qs;
 using namespace qs::fixtures;
@@ -876,6 +877,31 @@ TEST(Metrics, a_quad_bent_past_90_degrees_is_folded) {
   EXPECT_EQ(quad_quality(QuadMesh::from_faces({p0, p1, p2, bent}, {{0, 1, 2, 3}})).folded_faces, 1u);
   EXPECT_EQ(quad_quality(QuadMesh::from_faces({p0, p1, p2, flat}, {{0, 1, 2, 3}})).folded_faces, 0u);
   EXPECT_EQ(quad_quality(quad_grid(6, 5)).folded_faces, 0u);
+}
+
+// A tetrahedron floating beside a scan (debris) converts to two quads on its four corners,
+// back to back: folded, and the least a closed quad mesh has. The quality counts such
+// pieces and the log's note names them, so that a user knows where the folds are.
+TEST(Metrics, closed_pieces_of_two_quads_are_counted_and_named) {
+  QuadMesh grid = quad_grid(6, 5);
+  std::vector<Vec3> positions = grid.positions();
+  std::vector<std::array<Index, 4>> quads;
+  for (Index f = 0; f < grid.n_faces(); ++f) quads.push_back(grid.face_vertices(f));
+  EXPECT_EQ(quad_quality(grid).two_quad_pieces, 0u);
+  EXPECT_EQ(defects_note(quad_quality(grid)), "");
+  for (int piece = 0; piece < 2; ++piece) {
+    const Index o = Index(positions.size());
+    for (const Vec3& c : {Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, 1, -1), Vec3(-1, -1, 1)})
+      positions.push_back(0.05 * c + Vec3(0.5 + piece, 0.5, 1));
+    quads.push_back({o, o + 1, o + 2, o + 3});
+    quads.push_back({o + 3, o + 2, o + 1, o});
+    const QuadQuality q = quad_quality(QuadMesh::from_faces(positions, quads));
+    EXPECT_EQ(q.two_quad_pieces, Index(piece + 1));
+    EXPECT_EQ(q.folded_faces, Index(2 * (piece + 1)));
+    const std::string pieces = piece == 0 ? "; 1 closed piece is two quads on the same four corners, "
+                                          : "; 2 closed pieces are two quads on the same four corners, ";
+    EXPECT_NE(defects_note(q).find(pieces), std::string::npos) << defects_note(q);
+  }
 }
 
 TEST(Metrics, offset_sphere_distance_is_the_offset) {

@@ -122,6 +122,15 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
     }
     q.nonconvex_faces += !quad_is_convex(p[0], p[1], p[2], p[3]);
     q.folded_faces += quad_folds(p[0], p[1], p[2], p[3]);
+    // A piece of f and one other face alone shares all four edges with it (counted at the
+    // lower of the two).
+    const Index t0 = m.twin(QuadMesh::halfedge(f, 0));
+    bool two_quads = t0 != kNone && QuadMesh::face(t0) > f;
+    for (Index k = 1; k < 4 && two_quads; ++k) {
+      const Index t = m.twin(QuadMesh::halfedge(f, k));
+      two_quads = t != kNone && QuadMesh::face(t) == QuadMesh::face(t0);
+    }
+    q.two_quad_pieces += two_quads;
     if (ref) {
       const Vec3 n = quad_normal(p[0], p[1], p[2], p[3]);
       const SurfacePoint s = ref->closest_to_quad_centre(p);
@@ -175,10 +184,10 @@ std::string to_json(const QuadQuality& q, const SurfaceDistance* d) {
                         "\"max_valence_interior\": %d, \"regular_percent\": %.3f, \"valence4_percent\": %.3f, "
                         "\"homeometry_min\": %.4f, \"homeometry_max\": %.4f, \"edge_ratio_min\": %.4f, "
                         "\"edge_ratio_max\": %.4f, \"mean_edge\": %.6g, \"nonconvex_faces\": %u, \"flipped_faces\": %u, "
-                        "\"folded_faces\": %u",
+                        "\"folded_faces\": %u, \"two_quad_pieces\": %u",
                         q.faces, q.vertices, q.max_valence, q.max_valence_interior, q.regular_percent,
                         q.valence4_percent, q.homeometry_min, q.homeometry_max, q.edge_ratio_min, q.edge_ratio_max,
-                        q.mu, q.nonconvex_faces, q.flipped_faces, q.folded_faces);
+                        q.mu, q.nonconvex_faces, q.flipped_faces, q.folded_faces, q.two_quad_pieces);
   std::string s(buf, std::size_t(n));
   if (d) {
     n = std::snprintf(buf, sizeof buf,

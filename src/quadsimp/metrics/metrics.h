@@ -22,6 +22,9 @@ struct QuadQuality {
   Index nonconvex_faces = 0;     //!< some corner turns against the face normal
   Index flipped_faces = 0;       //!< normal against the reference surface's (needs ref)
   Index folded_faces = 0;        //!< bent by more than 90 degrees along both diagonals
+  //! Closed pieces of two quads on the same four corners: the least quad mesh of a tiny
+  //! closed part (a tetrahedron of scan debris), folded by nature.
+  Index two_quad_pieces = 0;
 };
 
 QuadQuality quad_quality(const QuadMesh& mesh, const ReferenceSurface* ref = nullptr);

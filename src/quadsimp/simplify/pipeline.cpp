@@ -77,7 +77,14 @@ std::string defects_note(const QuadQuality& q) {
   add(q.flipped_faces, "flipped (facing against the input)");
   add(q.nonconvex_faces, "non-convex");
   if (parts.empty()) return {};
-  return "of the result's " + std::to_string(q.faces) + " quads, " + parts + "; see Limits in quadsimp's README";
+  std::string pieces;
+  if (q.two_quad_pieces > 0)
+    pieces = "; " + std::to_string(q.two_quad_pieces) +
+             (q.two_quad_pieces == 1 ? " closed piece is" : " closed pieces are") +
+             " two quads on the same four corners, all a tiny closed part (a scan's debris) can become: remove small "
+             "isolated pieces first";
+  return "of the result's " + std::to_string(q.faces) + " quads, " + parts + pieces +
+         "; see Limits in quadsimp's README";
 }
 
 std::string operations_done(const SimplifyReport& r) {
