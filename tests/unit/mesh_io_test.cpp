@@ -173,6 +173,28 @@ TEST_F(MeshIo, quads_from_polygons_and_from_faux_flags) {
   }
 }
 
+// A file of quads and triangles keeps its quads as quads, to be split along their shorter
+// diagonal around the file's own triangles. Here a doublet (two quads on three corners
+// a, v, c, which MeshLab's pairing leaves), one of its quads written as two triangles
+// along a-c and the other as a quad whose shorter diagonal is a-c too. Fanned from its
+// first corner, as every quad of a mixed file was, the quad lay along a-c as well: one
+// triangle twice, an edge of four triangles, and the doublet's vertex removed on loading.
+TEST_F(MeshIo, a_file_of_quads_and_triangles_keeps_its_quads) {
+  const std::string obj = write("m.obj", obj_vertices("0 0 0\n1 0.2 0\n2 0 0\n1 -1.5 0\n1 3 0\n") +
+                                             "f 1 2 3\nf 1 3 4\nf 3 2 1 5\n");
+  const MeshFile f = read_mesh(obj);
+  EXPECT_FALSE(f.is_pure_quad());
+  ASSERT_EQ(f.quads.size(), 1u);
+  EXPECT_EQ(f.triangles.size(), 2u);
+  TriMesh t = triangles_of(f);
+  ASSERT_EQ(t.n_faces(), 4u);
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.removed_duplicate_faces, 0u);
+  EXPECT_EQ(r.removed_nonmanifold_faces, 0u);
+  EXPECT_EQ(t.n_faces(), 4u);
+  EXPECT_EQ(t.n_vertices(), 5u);
+}
+
 TEST_F(MeshIo, polygons_of_five_corners_in_every_format) {
   // Two convex pentagons of area 1.5 each, apart. vcglib's OFF reader (replaced by
   // read_off.cpp) put the triangles of such a face on the file's first five vertices.
@@ -228,10 +250,15 @@ TEST(FauxPairs, halves_of_a_quad_need_not_be_next_to_each_other) {
   ASSERT_EQ(f.quads.size(), 2u);
   EXPECT_EQ(f.quads[0], (std::array<Index, 4>{1, 4, 3, 0}));
   EXPECT_EQ(f.quads[1], (std::array<Index, 4>{2, 5, 4, 1}));
-  // One triangle without a faux edge: all stay triangles.
+  // One triangle without a faux edge: it and the half it would pair with stay triangles,
+  // the other pair is a quad (a file of quads and triangles).
   const MeshFile t = pair_faux_triangles(p, tris, {4, 4, 1, 0});
   EXPECT_FALSE(t.is_pure_quad());
-  EXPECT_EQ(t.triangles.size(), 4u);
+  ASSERT_EQ(t.quads.size(), 1u);
+  EXPECT_EQ(t.quads[0], (std::array<Index, 4>{1, 4, 3, 0}));
+  EXPECT_EQ(t.triangles.size(), 2u);
+  // None has one faux edge: all stay triangles.
+  EXPECT_EQ(pair_faux_triangles(p, tris, {0, 0, 0, 0}).triangles.size(), 4u);
 }
 
 TEST(QuadInput, a_doublet_is_split_into_manifold_triangles) {
@@ -467,7 +494,8 @@ TEST_F(MeshIo, ply_variants_are_read) {
   const MeshFile b = read_mesh(write("big.ply", big));
   ASSERT_EQ(b.positions.size(), 5u);
   EXPECT_EQ(b.positions[4], Vec3(0.5, 2, 1.0));
-  EXPECT_EQ(b.triangles.size(), 3u);
+  EXPECT_EQ(b.quads.size(), 1u);
+  EXPECT_EQ(b.triangles.size(), 1u);
 
   // A polygon of 300 corners with an int count: vcglib kept 44 of them (300 mod 256).
   std::string ring = "ply\nformat ascii 1.0\nelement vertex 300\nproperty float x\nproperty float y\nproperty float z\n"

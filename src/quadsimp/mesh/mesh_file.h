@@ -9,8 +9,9 @@
 
 namespace qs {
 
-//! A mesh as a file or a host application holds it, before any cleaning: either
-//! `quads` (a pure quad mesh) or `triangles` (anything else).
+//! A mesh as a file or a host application holds it, before any cleaning: its quads and
+//! its other faces as triangles (a polygon of five or more corners fanned); a pure quad
+//! mesh has quads alone.
 struct MeshFile {
   std::vector<Vec3> positions;
   std::vector<std::array<Index, 3>> triangles;
@@ -20,8 +21,8 @@ struct MeshFile {
 
 //! Rebuilds quads from triangles that carry "faux" edge flags, the way vcglib and
 //! MeshLab store polygons: bit k of faux[t] marks edge k (corner k to k+1) of triangle
-//! t as the inner diagonal of a quad. If every triangle has exactly one faux edge,
-//! shared with its neighbour, the result holds quads; otherwise the triangles.
+//! t as the inner diagonal of a quad. Triangles paired through a faux edge shared with a
+//! neighbour become quads; the others stay triangles.
 MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array<Index, 3>> triangles,
                              const std::vector<std::uint8_t>& faux);
 
