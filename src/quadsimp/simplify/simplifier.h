@@ -56,10 +56,10 @@ class Simplifier {
   // F_S as the priority and the sizing use it: clamped to [s_lo, s_hi].
   double clamped_s(double s) const { return std::clamp(s, s_lo_, s_hi_); }
   // Spring size relative to the rest from a clamped F_S: s_mid / F_S, within [1/2, 2].
-  // The quantile clamp alone does not bound it where F_S is rounding noise (exactly flat
-  // parts): ratios of noise left the bump test with 71% regular vertices and 2.3x the RMS
-  // of a single mu.
-  // On the scans the quantiles are within 1.5x of each other and this never binds.
+  // The quantiles alone did not bound it where F_S is rounding noise (exactly flat parts):
+  // ratios of noise left the bump test with 71% regular vertices and 2.3x the RMS of a
+  // single mu. clamped_s() keeps F_S within the same bound; this one holds without the
+  // clamp (s_percentiles 0).
   double target_size(double s) const { return std::clamp(s_mid_ / std::max(s, 1e-30), 0.5, 2.0); }
   // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
   // once it passes the topology and valence checks. The loop and blocked_share() both

@@ -323,8 +323,8 @@ SimplifyReport Simplifier::run() {
     std::sort(sorted.begin(), sorted.end());
     s_mid_ = std::max(double(sorted[sorted.size() / 2]), 1e-30);  // a scale only: sizes are relative
     if (const double q = opt_.s_percentiles; q > 0) {
-      s_lo_ = sorted[std::size_t(q * (sorted.size() - 1))];
-      s_hi_ = sorted[std::size_t((1 - q) * (sorted.size() - 1))];
+      s_lo_ = std::max(double(sorted[std::size_t(q * (sorted.size() - 1))]), 0.5 * s_mid_);
+      s_hi_ = std::min(double(sorted[std::size_t((1 - q) * (sorted.size() - 1))]), 2.0 * s_mid_);
     }
     s_foot_.assign(m_.vertex_capacity(), s_mid_);  // size 1 where a vertex has no foot
   }
