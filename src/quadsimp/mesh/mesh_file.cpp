@@ -15,11 +15,8 @@ MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array
     const unsigned b = faux[t] & 7u;
     return b == 1 ? 0 : b == 2 ? 1 : b == 4 ? 2 : -1;
   };
-  bool any = faux.size() == tris.size();
-  if (any) {
-    any = false;
-    for (Index t = 0; t < n && !any; ++t) any = faux_edge(t) >= 0;
-  }
+  bool any = false;  // a triangle with one faux edge
+  for (Index t = 0; t < n && faux.size() == tris.size() && !any; ++t) any = faux_edge(t) >= 0;
   if (!any) {
     out.triangles = std::move(tris);
     return out;
@@ -123,15 +120,16 @@ TriMesh triangles_of(const MeshFile& file) {
   // refused as non-manifold. A file's own triangles count too: where a doublet had one
   // quad written as two triangles, the other was split onto them (MeshLab's pairing of the
   // moai with every seventh quad as triangles: 61 duplicate triangles, 447 caps and 72
-  // folds to mend, 60% regular vertices at 200 quads against 85%). Vertices at one position count as one because cleaning
-  // merges them where they are on a border: a quad file whose slit has touching sides
-  // (our own output of a mesh that MeshLab's subdivision had pinched) got the same split
-  // on both sides.
+  // folds to mend, 60% regular vertices at 200 quads against 85%). Vertices at one
+  // position count as one because cleaning merges them where they are on a border: a quad
+  // file whose slit has touching sides (our own output of a mesh that MeshLab's
+  // subdivision had pinched) got the same split on both sides.
+  if (file.quads.empty()) return t;
   const Index n = Index(file.positions.size());
-  const std::vector<Index> same = file.quads.empty() ? std::vector<Index>() : first_equal_positions(file.positions);
+  const std::vector<Index> same = first_equal_positions(file.positions);
   // A corner out of range is for cleaning to refuse with its message, not to be read here.
-  const auto in_range = [&](const std::array<Index, 4>& q) {
-    return std::all_of(q.begin(), q.end(), [&](Index v) { return v < n; });
+  const auto in_range = [&](const auto& face) {
+    return std::all_of(face.begin(), face.end(), [&](Index v) { return v < n; });
   };
   auto key = [&](Index a, Index b) {
     a = same[a], b = same[b];
@@ -139,12 +137,12 @@ TriMesh triangles_of(const MeshFile& file) {
   };
   // At most 4 edges and 1 split per quad, under the 6 slots per quad KeySet makes of this;
   // 3 edges per triangle, under its 4.
-  KeySet used(file.quads.empty() ? 0 : 3 * file.quads.size() + 2 * file.triangles.size());
+  KeySet used(3 * file.quads.size() + 2 * file.triangles.size());
   for (const auto& q : file.quads)
     if (in_range(q))
       for (int k = 0; k < 4; ++k) used.insert(key(q[k], q[(k + 1) % 4]));
   for (const auto& f : file.triangles)
-    if (!file.quads.empty() && std::all_of(f.begin(), f.end(), [&](Index v) { return v < n; }))
+    if (in_range(f))
       for (int k = 0; k < 3; ++k) used.insert(key(f[k], f[(k + 1) % 3]));
   for (const auto& q : file.quads) {
     if (!in_range(q)) {
