@@ -81,7 +81,7 @@ class Simplifier {
   void after_change(const Index* first, const Index* last);
   void add_faces_around(Index v, std::vector<Index>& faces);
   void requeue_region();
-  double blocked_share() const;
+  double blocked_share();
   double predicted_halt() const;
   void record_foot(Index v, const SurfacePoint& s) {
     foot_normal_[v] = ref_.normal_at(s);
@@ -177,6 +177,7 @@ class Simplifier {
   // slower on the adaptive armadillo and bunny (five of seven alternated runs).
   std::vector<double> size_;
   double size_mean_ = 1;
+  std::vector<double> blocked_area_;  // blocked_share()'s per face, kept for its next measure
   double fine_above_ = std::numeric_limits<double>::infinity();  // the fine phase runs above this face count
   std::uint32_t stamp_ = 0;
   std::vector<Entry> heap_;

@@ -228,8 +228,9 @@ double Simplifier::predicted_halt() const {
 // check_collapse() only reads, so the faces are judged in parallel (a seventh of the
 // adaptive bunny's loop, judged one by one); the areas are summed in face order, so the
 // share, and where the run halts, do not depend on the threads.
-double Simplifier::blocked_share() const {
-  std::vector<double> blocked(m_.face_capacity(), 0.0);
+double Simplifier::blocked_share() {
+  std::vector<double>& blocked = blocked_area_;
+  blocked.assign(m_.face_capacity(), 0.0);
   tbb::parallel_for(tbb::blocked_range<Index>(0, m_.face_capacity(), 512), [&](const tbb::blocked_range<Index>& r) {
     for (Index f = r.begin(); f != r.end(); ++f) {
       if (!m_.is_face_live(f)) continue;
