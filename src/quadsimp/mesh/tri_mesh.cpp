@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <set>
@@ -672,7 +673,8 @@ bool solve_neighbour_means(TriMesh& m, const CornersAround& around, const std::v
   for (Index i = 0; i < n; ++i) row[vs[i]] = i;
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::MatrixX3d fixed = Eigen::MatrixX3d::Zero(n, 3);
-  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);
   std::vector<Index> reached;  // unknowns with a fixed neighbour, then those connected to them
   for (Index i = 0; i < n; ++i) {
     const Index v = vs[i];
