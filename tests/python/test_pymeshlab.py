@@ -185,6 +185,23 @@ def test_conversion(bunny_path):
         assert len(out.polygonal_face_list()) >= triangles // 2
 
 
+def test_a_layer_of_quads_and_triangles_keeps_its_quads(tmp_path, capfd):
+    # A doublet (two quads on three corners, which MeshLab's pairing leaves), one quad
+    # written as two triangles: MeshLab loads the other as two triangles with a faux edge
+    # between them. Fanned as in a triangle layer, it lay on the first two: one triangle
+    # twice, removed on loading with the doublet's vertex.
+    path = tmp_path / "doublet.obj"
+    path.write_text("v 0 0 0\nv 1 0.2 0\nv 2 0 0\nv 1 -1.5 0\nv 1 3 0\nf 1 2 3\nf 1 3 4\nf 3 2 1 5\n")
+    ms = pymeshlab.MeshSet(verbose=True)
+    ms.load_new_mesh(str(path))
+    ms.meshing_tri_to_pure_quad()
+    out = ms.current_mesh()
+    assert len(out.polygonal_face_list()) == 2 and out.vertex_number() == 5
+    err = capfd.readouterr().err
+    assert "4 triangles paired into 2 quads" in err
+    assert "removed" not in err
+
+
 def test_layers_are_polygonal_for_meshlabs_own_filters(bunny_path):
     # MeshLab's polygonal planarity refuses triangle-only layers and walks the faux edges
     # through face-face adjacency (it crashed on a layer without it).
