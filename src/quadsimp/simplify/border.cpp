@@ -77,10 +77,18 @@ bool Simplifier::is_border_corner(Index v) const {
 // border). Nothing happens unless both steps pass their checks; a rotation whose ear
 // is refused is undone.
 void Simplifier::coarsen_border() {
-  // The list is taken first: removals kill vertices and move others to the border.
+  // The list is taken first, in id order: removals kill vertices and move others to the
+  // border. Candidates no longer on it are dropped.
   border_verts_.clear();
-  for (Index v = 0; v < m_.vertex_capacity(); ++v)
-    if (m_.is_vertex_live(v) && m_.is_border_vertex(v)) border_verts_.push_back(v);
+  std::size_t kept = 0;
+  for (Index v : border_candidates_) {
+    if (m_.is_vertex_live(v) && m_.is_border_vertex(v))
+      border_candidates_[kept++] = v, border_verts_.push_back(v);
+    else
+      border_noted_[v] = 0;
+  }
+  border_candidates_.resize(kept);
+  std::sort(border_verts_.begin(), border_verts_.end());
   for (Index b : border_verts_)
     if (m_.is_vertex_live(b) && m_.is_border_vertex(b)) remove_border_vertex(b);
 }
