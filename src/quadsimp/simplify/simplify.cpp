@@ -301,10 +301,8 @@ void Simplifier::after_change(const Index* first, const Index* last) {
     smooth_region(std::max(1, opt_.smoothing_sweeps - 1));
   }
   requeue_region();
-  if (has_border_) {
-    for (const Index* x = first; x != last; ++x) note_border(*x);
+  if (has_border_)
     for (Index v : region_verts_) note_border(v);
-  }
 }
 
 SimplifyReport Simplifier::run() {
@@ -338,6 +336,7 @@ SimplifyReport Simplifier::run() {
       const SurfacePoint s = ref_.closest_within(m_.position(v), 0.0);  // M0's own vertices
       if (s.found()) record_foot(v, s);
     }
+  border_noted_.assign(m_.vertex_capacity(), 0);
   for (Index v = 0; v < m_.vertex_capacity(); ++v) note_border(v);
   has_border_ = !border_candidates_.empty();
   component_mu_.assign(connected_components(m_, component_), 0.0);
