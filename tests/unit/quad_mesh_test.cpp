@@ -130,6 +130,42 @@ TEST(QuadMesh, from_faces_refuses_bad_connectivity) {
   EXPECT_THROW(QuadMesh::from_faces(std::vector<Vec3>(7, Vec3::Zero()), {{0, 1, 2, 3}, {0, 4, 5, 6}}), InvalidInput);
 }
 
+// Twins are matched among the half-edges leaving each vertex; a pole of valence 40,
+// its quads listed out of order, checks that every one finds its own.
+TEST(QuadMesh, from_faces_pairs_twins_around_a_vertex_of_high_valence) {
+  constexpr Index n = 40;
+  std::vector<Vec3> p = {Vec3::Zero()};
+  for (Index k = 0; k < n; ++k) {
+    const double a = 2 * M_PI * k / n;
+    p.push_back(Vec3(std::cos(a), std::sin(a), 0));              // 1 + 2k: inner ring
+    p.push_back(Vec3(1.5 * std::cos(a), 1.5 * std::sin(a), 0.1));  // 2 + 2k: outer ring
+  }
+  const auto inner = [&](Index k) { return 1 + 2 * (k % n); };
+  const auto outer = [&](Index k) { return 2 + 2 * (k % n); };
+  std::vector<std::array<Index, 4>> quads;
+  for (Index j = 0; j < n; ++j) {
+    const Index k = (7 * j) % n;  // 7 and 40 are coprime: every k once, out of order
+    quads.push_back({0, inner(k), outer(k + 1), inner(k + 1)});
+  }
+  const QuadMesh m = QuadMesh::from_faces(p, quads);
+  validate(m);
+  EXPECT_EQ(m.valence(0), int(n));
+  for (Index h = 0; h < m.halfedge_capacity(); ++h) {
+    const Index t = m.twin(h);
+    if (m.from(h) == 0 || m.to(h) == 0) {
+      ASSERT_NE(t, kNone);
+      EXPECT_EQ(m.from(t), m.to(h));
+      EXPECT_EQ(m.to(t), m.from(h));
+      EXPECT_EQ(m.twin(t), h);
+    } else {
+      EXPECT_EQ(t, kNone);  // the outer border
+    }
+  }
+  // A third quad on one of the pole's edges, listed last.
+  quads.push_back({inner(3), 0, outer(50), outer(51)});
+  EXPECT_THROW(QuadMesh::from_faces(p, quads), InvalidInput);
+}
+
 TEST(QuadMesh, validate_catches_corruption) {
   {
     QuadMesh m = quad_grid(2, 2);

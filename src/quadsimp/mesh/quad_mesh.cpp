@@ -2,9 +2,9 @@
 #include "quadsimp/mesh/quad_mesh.h"
 
 #include <algorithm>
+#include <numeric>
 #include <set>
 #include <string>
-#include <unordered_map>
 #include <utility>
 
 #include "quadsimp/util/errors.h"
@@ -59,16 +59,30 @@ QuadMesh QuadMesh::from_faces(std::vector<Vec3> positions,
   m.twin_.assign(m.origin_.size(), kNone);
   m.n_live_faces_ = Index(quads.size());
 
-  std::unordered_map<std::uint64_t, Index> directed;
-  directed.reserve(m.origin_.size());
-  for (Index h = 0; h < m.origin_.size(); ++h) {
-    if (!directed.emplace(edge_key(m.from(h), m.to(h)), h).second)
+  // Half-edges grouped by origin and sorted by end: a half-edge's twin is found by a
+  // binary search among those leaving its end. A hash map of every half-edge took 1.05 s
+  // of the conversion of a 1.1M-triangle scan (555,610 quads); this takes 0.12-0.16 s.
+  const Index nh = Index(m.origin_.size());
+  std::vector<Index> first(nv + 1, 0);
+  for (Index h = 0; h < nh; ++h) ++first[m.from(h) + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<std::pair<Index, Index>> leaving(nh);  // (end, half-edge), by origin
+  std::vector<Index> fill(first.begin(), first.end() - 1);
+  for (Index h = 0; h < nh; ++h) leaving[fill[m.from(h)]++] = {m.to(h), h};
+  for (Index v = 0; v < nv; ++v) std::sort(leaving.begin() + first[v], leaving.begin() + first[v + 1]);
+  const auto between = [&](Index a, Index b) {
+    return std::equal_range(leaving.begin() + first[a], leaving.begin() + first[a + 1], std::pair<Index, Index>(b, 0),
+                            [](const auto& x, const auto& y) { return x.first < y.first; });
+  };
+  for (Index h = 0; h < nh; ++h) {
+    const auto same = between(m.from(h), m.to(h));
+    if (same.second - same.first > 1)
       throw InvalidInput("edge " + std::to_string(m.from(h)) + "-" + std::to_string(m.to(h)) +
                          " is shared by more than two faces or by faces of opposite orientation");
   }
-  for (Index h = 0; h < m.origin_.size(); ++h) {
-    auto it = directed.find(edge_key(m.to(h), m.from(h)));
-    if (it != directed.end()) m.twin_[h] = it->second;
+  for (Index h = 0; h < nh; ++h) {
+    const auto back = between(m.to(h), m.from(h));
+    if (back.first != back.second) m.twin_[h] = back.first->second;
   }
   for (Index h = 0; h < m.origin_.size(); ++h) {
     const Index v = m.from(h);
