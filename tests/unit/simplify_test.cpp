@@ -11,6 +11,7 @@
 
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/tri_to_quad.h"
+#include "quadsimp/convert/prepare_input.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
 #include "quadsimp/mesh/quad_geometry.h"
@@ -703,6 +704,27 @@ TEST(ReferenceSurface, closest_within_finds_the_closest_point) {
   EXPECT_NEAR(far.distance, ref.closest(Vec3(3, 0, 0)).distance, 1e-12);
 }
 
+// A closed, flattened box: its top faces up and its bottom down, 1/8 of its width
+// apart. Asked for the closest point facing up, from just under the bottom, the answer is
+// on the top at any size; the orientation passed is a quad's area normal, which on the
+// box written 2^20 times smaller is 1e-13 long (Eigen's fuzzy isZero() took it for "any
+// orientation", and the bottom was found).
+TEST(ReferenceSurface, closest_facing_a_way_does_not_depend_on_the_unit_of_length) {
+  for (const double scale : {1.0, std::ldexp(1.0, -20)}) {
+    SCOPED_TRACE(scale);
+    TriMesh box = tri_cube(4);
+    for (Vec3& p : box.positions) p = scale * Vec3(p.x(), p.y(), p.z() / 8);
+    clean(box);
+    const ReferenceSurface ref(box);
+    const Vec3 below = scale * Vec3(0.3, 0.4, -0.01), up = scale * scale * Vec3(0, 0, 0.25);
+    const SurfacePoint any = ref.closest(below);
+    const SurfacePoint facing_up = ref.closest(below, std::numeric_limits<double>::infinity(), up);
+    ASSERT_TRUE(any.found() && facing_up.found());
+    EXPECT_LT(ref.face_normal(any.face).z(), -0.99);
+    EXPECT_GT(ref.face_normal(facing_up.face).z(), 0.99);
+  }
+}
+
 // A vertex pushed past its neighbour turns two triangles over onto the grid: a flap,
 // with the triangles around its corners. A flattened sphere (two sides alike, meeting
 // at a sharp rim) has no flap, nor has the grid before the push.
@@ -923,4 +945,36 @@ TEST(Metrics, offset_sphere_distance_is_the_offset) {
   const ReferenceSurface plane_ref(plane);
   const SurfaceDistance zero = surface_distance(tri_to_quad(plane), plane_ref, 100000);
   EXPECT_LT(zero.hausdorff, 1e-6);
+}
+
+TEST(Simplify, results_do_not_depend_on_the_unit_of_length) {
+  // The same wavy grid with a strip folded back onto it (laid flat on loading), written
+  // in units 2^20 times smaller and larger: a power of two scales every product and
+  // quotient exactly, so every step must give the same mesh, scaled, unless it compares
+  // a length, area or normal to an absolute constant. Two did (Eigen's isZero(), fuzzy
+  // by 1e-12): in units 2^15 smaller the fold was left, and the search for the closest
+  // point facing a quad's way took any face.
+  const TriMesh base = folded_grid(48, nullptr, 5, 1.5, 0.15);
+  const auto run = [&](double scale, const SimplifyParams& params) {
+    MeshFile file{base.positions, base.faces, {}};
+    for (Vec3& p : file.positions) p *= scale;
+    Input in = prepare_input(file, "grid");
+    const ReferenceSurface ref(in.reference);
+    EXPECT_EQ(in.clean.unfolded_patches, 1u) << "scale " << scale;
+    simplify_input(in, ref, params);
+    validate(in.quads);
+    return in.quads;
+  };
+  SimplifyParams uniform, adaptive;
+  uniform.target_faces = 150;
+  adaptive.adaptive = adaptive.auto_halt = true;
+  for (const SimplifyParams& params : {uniform, adaptive}) {
+    const QuadMesh unit = run(1.0, params);
+    for (const double scale : {std::ldexp(1.0, -20), std::ldexp(1.0, 20)}) {
+      SCOPED_TRACE(std::string(params.adaptive ? "adaptive" : "uniform") + ", scale " + std::to_string(scale));
+      const QuadMesh scaled = run(scale, params);
+      ASSERT_EQ(scaled.quads(), unit.quads());
+      for (Index v = 0; v < unit.n_vertices(); ++v) ASSERT_EQ(scaled.position(v), scale * unit.position(v)) << v;
+    }
+  }
 }

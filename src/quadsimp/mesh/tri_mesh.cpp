@@ -909,7 +909,7 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
           if (patch[f] == kNone) facing += m.area_normal(m.faces[f]);
           for (Index k = 0; k < 3; ++k) extent = std::max(extent, (P[m.faces[f][k]] - P[v]).norm());
         }
-      if (facing.isZero()) break;
+      if (facing == Vec3::Zero()) break;  // not isZero(): fuzzy by an absolute 1e-12
       if (ring == 0) facing0 = facing;
       else if (!(facing.dot(facing0) > 0)) break;
       before.clear();

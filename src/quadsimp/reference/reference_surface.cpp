@@ -40,7 +40,9 @@ struct ClosestQuery {
 bool closest_callback(RTCPointQueryFunctionArguments* args) {
   auto* q = static_cast<ClosestQuery*>(args->userPtr);
   const Index f = args->primID;
-  if (!q->normal.isZero() && q->ref->face_normal(f).dot(q->normal) <= 0) return false;
+  // Exactly zero: Eigen's isZero() is fuzzy by an absolute 1e-12, and a quad's area
+  // normal is that short on a scan 1e-4 units across (bunny.ply in units 2^15 times smaller).
+  if (q->normal != Vec3::Zero() && q->ref->face_normal(f).dot(q->normal) <= 0) return false;
   const auto& t = q->ref->mesh().faces[f];
   const auto& P = q->ref->mesh().positions;
   const Vec3 p = Vec3(args->query->x, args->query->y, args->query->z) + q->origin;
