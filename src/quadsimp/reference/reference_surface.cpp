@@ -33,6 +33,7 @@ void embree_error(void* user, RTCError code, const char* str) {
 struct ClosestQuery {
   const ReferenceSurface* ref;
   Vec3 origin;  // what Embree's coordinates are relative to
+  double unit;  // and in what unit
   Vec3 normal;  // zero: any orientation
   SurfacePoint* best;
 };
@@ -45,13 +46,13 @@ bool closest_callback(RTCPointQueryFunctionArguments* args) {
   if (q->normal != Vec3::Zero() && q->ref->face_normal(f).dot(q->normal) <= 0) return false;
   const auto& t = q->ref->mesh().faces[f];
   const auto& P = q->ref->mesh().positions;
-  const Vec3 p = Vec3(args->query->x, args->query->y, args->query->z) + q->origin;
+  const Vec3 p = Vec3(args->query->x, args->query->y, args->query->z) / q->unit + q->origin;
   double u, v;
   const Vec3 c = closest_on_triangle(p, P[t[0]], P[t[1]], P[t[2]], u, v);
   const double d = (c - p).norm();
-  if (d > args->query->radius || (q->best->found() && d >= q->best->distance)) return false;
+  if (d * q->unit > args->query->radius || (q->best->found() && d >= q->best->distance)) return false;
   *q->best = SurfacePoint{f, u, v, c, d};
-  args->query->radius = float(d);
+  args->query->radius = float(d * q->unit);
   return true;
 }
 
@@ -152,10 +153,13 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   // Embree owns these buffers (and pads them as it needs).
   auto* xyz = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                           3 * sizeof(float), P.size()));
-  // Embree works in float: shifted to working_origin(), and queries alike.
+  // Embree works in float: shifted to working_origin(), and queries alike. And scaled by
+  // a power of two (exactly) to a diagonal between 1 and 2: products of coordinates
+  // underflowed in float on a scan 1e-10 units across.
   origin_ = working_origin(P);
+  unit_ = diagonal_ > 0 ? std::ldexp(1.0, -std::ilogb(diagonal_)) : 1.0;
   for (std::size_t i = 0; i < P.size(); ++i)
-    for (int k = 0; k < 3; ++k) xyz[3 * i + k] = float(P[i][k] - origin_[k]);
+    for (int k = 0; k < 3; ++k) xyz[3 * i + k] = float((P[i][k] - origin_[k]) * unit_);
   auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                              3 * sizeof(unsigned), mesh_.faces.size()));
   for (std::size_t f = 0; f < mesh_.faces.size(); ++f)
@@ -181,14 +185,14 @@ SurfacePoint ReferenceSurface::ray_project(const Vec3& p, const Vec3& dir, doubl
       RTCIntersectContext ctx;
       rtcInitIntersectContext(&ctx);
       RTCRayHit rh;
-      rh.ray.org_x = float(p.x() - origin_.x());
-      rh.ray.org_y = float(p.y() - origin_.y());
-      rh.ray.org_z = float(p.z() - origin_.z());
+      rh.ray.org_x = float((p.x() - origin_.x()) * unit_);
+      rh.ray.org_y = float((p.y() - origin_.y()) * unit_);
+      rh.ray.org_z = float((p.z() - origin_.z()) * unit_);
       rh.ray.dir_x = float(sign * d.x());
       rh.ray.dir_y = float(sign * d.y());
       rh.ray.dir_z = float(sign * d.z());
       rh.ray.tnear = tnear;
-      rh.ray.tfar = float(std::min(max_dist, best.distance));
+      rh.ray.tfar = float(std::min(max_dist, best.distance) * unit_);
       rh.ray.mask = ~0u;
       rh.ray.flags = 0;
       rh.ray.time = 0.f;
@@ -203,7 +207,7 @@ SurfacePoint ReferenceSurface::ray_project(const Vec3& p, const Vec3& dir, doubl
         const auto& P = mesh_.positions;
         const double u = rh.hit.u, v = rh.hit.v;
         const Vec3 q = (1 - u - v) * P[t[0]] + u * P[t[1]] + v * P[t[2]];
-        best = SurfacePoint{f, u, v, q, double(rh.ray.tfar)};
+        best = SurfacePoint{f, u, v, q, double(rh.ray.tfar) / unit_};
         break;
       }
       tnear = std::nextafter(rh.ray.tfar, std::numeric_limits<float>::infinity());
@@ -215,14 +219,14 @@ SurfacePoint ReferenceSurface::ray_project(const Vec3& p, const Vec3& dir, doubl
 SurfacePoint ReferenceSurface::closest(const Vec3& p, double max_dist, const Vec3& normal) const {
   SurfacePoint best;
   RTCPointQuery q;
-  q.x = float(p.x() - origin_.x());
-  q.y = float(p.y() - origin_.y());
-  q.z = float(p.z() - origin_.z());
+  q.x = float((p.x() - origin_.x()) * unit_);
+  q.y = float((p.y() - origin_.y()) * unit_);
+  q.z = float((p.z() - origin_.z()) * unit_);
   q.time = 0.f;
-  q.radius = std::isfinite(max_dist) ? float(max_dist) : std::numeric_limits<float>::infinity();
+  q.radius = std::isfinite(max_dist) ? float(max_dist * unit_) : std::numeric_limits<float>::infinity();
   RTCPointQueryContext ctx;
   rtcInitPointQueryContext(&ctx);
-  ClosestQuery data{this, origin_, normal, &best};
+  ClosestQuery data{this, origin_, unit_, normal, &best};
   rtcPointQuery(bvh_->scene, &q, &ctx, closest_callback, &data);
   if (best.found()) {
     // Exact distance from the double-precision input point.

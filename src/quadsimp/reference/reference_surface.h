@@ -94,6 +94,7 @@ class ReferenceSurface {
   std::vector<Index> border_out_, border_in_;
   double diagonal_ = 0, mean_edge_ = 0;
   Vec3 origin_ = Vec3::Zero();  // subtracted from every point Embree sees
+  double unit_ = 1;             // then multiplied by this power of two (Embree's unit length)
   struct Bvh;
   std::unique_ptr<Bvh> bvh_;
 };
