@@ -122,6 +122,7 @@ def test_a_result_with_folded_quads_is_logged(capfd):
     err = capfd.readouterr().err
     assert "of the result's 100 quads, " in err
     assert " folded (bent by more than 90 degrees)" in err
+    assert "cylinder: 100% of the surface is long, thin triangles" in err  # said on loading, with the remedy
     ms.add_mesh(open_grid(12), "grid")
     ms.meshing_quad_mesh_simplification(targetfacenum=60)
     assert "of the result's" not in capfd.readouterr().err

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "fixtures/shapes.h"
+#include "quadsimp/convert/prepare_input.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
 
@@ -193,4 +194,21 @@ TEST(PrepareInput, quads_that_need_repairs_are_paired_again_from_their_triangles
     EXPECT_EQ(border_vertices(in.quads), Index(4 * n)) << "one connected sheet";
     EXPECT_NE(notes.back().find("paired into quads again"), std::string::npos) << notes.back();
   }
+}
+
+TEST(PrepareInput, says_when_the_surface_is_long_thin_triangles) {
+  // A CAD cylinder of one row of triangles round its side: every triangle is 2 high and
+  // about 0.1 wide (its caps are fans of the same). With eight rows the side is not
+  // thin, and a third of the area (the caps) is not enough to say so; nor a UV sphere.
+  const auto notes_of = [](const TriMesh& t) {
+    std::string all;
+    prepare_input(MeshFile{t.positions, t.faces, {}}, "in", {}, [&](std::string_view m) { all += m; });
+    return all;
+  };
+  const std::string note = "of the surface is long, thin triangles (height under a tenth of the longest edge)";
+  const std::string one_row = notes_of(cad_cylinder(64, 1, 2.0));
+  EXPECT_NE(one_row.find("in: 100% " + note), std::string::npos) << one_row;
+  EXPECT_NE(one_row.find("remesh first"), std::string::npos) << one_row;
+  EXPECT_EQ(notes_of(cad_cylinder(64, 8, 2.0)).find(note), std::string::npos);
+  EXPECT_EQ(notes_of(tri_sphere(30, 40)).find(note), std::string::npos);
 }
