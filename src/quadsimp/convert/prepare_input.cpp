@@ -40,7 +40,8 @@ Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions
   in.reference = triangles_of(file);
   in.clean = clean(in.reference, name, log);
   sort_spatially(in.reference);
-  if (const double thin = thin_area_share(in.reference); log && thin > kThinShare)
+  const double thin = log ? thin_area_share(in.reference) : 0.0;
+  if (thin > kThinShare)
     log(name + ": " + std::to_string(int(std::lround(100 * thin))) +
         "% of the surface is long, thin triangles (height under a tenth of the longest edge), as CAD "
         "tessellations write them: the quads made of them are long and thin too, and simplifying them leaves "
