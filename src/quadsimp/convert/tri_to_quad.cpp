@@ -220,32 +220,36 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
   r.parity_splits = fix_parity(t, adj);
   r.input_triangles = t.n_faces();
 
-  // Greedy matching, best candidate first; ties broken by ids for determinism.
-  struct Cand {
-    double score;
-    Index f, k;
-  };
-  std::vector<Cand> cand;
-  cand.reserve(3 * t.faces.size() / 2);
-  const double cos_max = std::cos(opt.max_dihedral_deg * M_PI / 180.0);
-  const std::vector<Vec3> normal = unit_normals(t);
-  for (Index f = 0; f < t.n_faces(); ++f)
-    for (Index k = 0; k < 3; ++k) {
-      const Index g = adj[f][k];
-      if (g == kNone || g < f || normal[f].dot(normal[g]) < cos_max) continue;
-      const double s = quad_quality(t.positions, merged_quad(t, f, k, g));
-      if (s > 0) cand.push_back({s, f, k});
-    }
-  std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) {
-    return a.score > b.score || (a.score == b.score && (a.f < b.f || (a.f == b.f && a.k < b.k)));
-  });
+  // Greedy matching, best candidate first; ties broken by ids for determinism. Its
+  // candidates and normals go at the end of the block, before the searches' and the
+  // blossom algorithm's memory is taken (the latter's graph sets the peak of a run).
   std::vector<Index> mate(t.n_faces(), kNone);
-  for (const Cand& c : cand) {
-    const Index g = adj[c.f][c.k];
-    if (mate[c.f] != kNone || mate[g] != kNone) continue;
-    mate[c.f] = g;
-    mate[g] = c.f;
-    r.paired_greedy += 2;
+  {
+    struct Cand {
+      double score;
+      Index f, k;
+    };
+    std::vector<Cand> cand;
+    cand.reserve(3 * t.faces.size() / 2);
+    const double cos_max = std::cos(opt.max_dihedral_deg * M_PI / 180.0);
+    const std::vector<Vec3> normal = unit_normals(t);
+    for (Index f = 0; f < t.n_faces(); ++f)
+      for (Index k = 0; k < 3; ++k) {
+        const Index g = adj[f][k];
+        if (g == kNone || g < f || normal[f].dot(normal[g]) < cos_max) continue;
+        const double s = quad_quality(t.positions, merged_quad(t, f, k, g));
+        if (s > 0) cand.push_back({s, f, k});
+      }
+    std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) {
+      return a.score > b.score || (a.score == b.score && (a.f < b.f || (a.f == b.f && a.k < b.k)));
+    });
+    for (const Cand& c : cand) {
+      const Index g = adj[c.f][c.k];
+      if (mate[c.f] != kNone || mate[g] != kNone) continue;
+      mate[c.f] = g;
+      mate[g] = c.f;
+      r.paired_greedy += 2;
+    }
   }
 
   Search search;
