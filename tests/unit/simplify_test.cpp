@@ -951,13 +951,15 @@ TEST(Metrics, offset_sphere_distance_is_the_offset) {
 
 TEST(Simplify, results_do_not_depend_on_the_unit_of_length) {
   // The same wavy grid with a strip folded back onto it (laid flat on loading), written
-  // in units 2^20, 2^40 and 2^60 times smaller and larger: a power of two scales every
-  // product and quotient exactly, so every step must give the same mesh, scaled, unless
-  // it compares a length, area or normal to an absolute constant, or a float under- or
-  // overflows. Two comparisons did (Eigen's isZero(), fuzzy by 1e-12): in units 2^15
+  // in units 2^20, 2^40, 2^60 and 2^96 times smaller and larger: a power of two scales
+  // every product and quotient exactly, so every step must give the same mesh, scaled,
+  // unless it compares a length, area or normal to an absolute constant, or a float under-
+  // or overflows. Three comparisons did: Eigen's isZero(), fuzzy by 1e-12 (in units 2^15
   // smaller the fold was left, and the search for the closest point facing a quad's way
-  // took any face. And Embree, in float, answered otherwise at 2^-60 (bunny.ply: from
-  // 2^-30) until its coordinates were scaled to a diagonal between 1 and 2.
+  // took any face), and the springs' test for coincident ends, 1e-30 (2^-96). And Embree,
+  // in float, answered otherwise at 2^-60 (bunny.ply: from 2^-30) until its coordinates
+  // were scaled to a diagonal between 1 and 2. Beyond 1e-30 and 1e30 across, meshes are
+  // refused (PrepareInput.refuses_a_mesh_too_small_or_too_large_to_compute_with).
   const TriMesh base = folded_grid(48, nullptr, 5, 1.5, 0.15);
   const auto run = [&](double scale, const SimplifyParams& params) {
     MeshFile file{base.positions, base.faces, {}};
@@ -974,7 +976,7 @@ TEST(Simplify, results_do_not_depend_on_the_unit_of_length) {
   adaptive.adaptive = adaptive.auto_halt = true;
   for (const SimplifyParams& params : {uniform, adaptive}) {
     const QuadMesh unit = run(1.0, params);
-    for (const int exponent : {-60, -40, -20, 20, 40, 60}) {
+    for (const int exponent : {-96, -60, -40, -20, 20, 40, 60, 96}) {
       const double scale = std::ldexp(1.0, exponent);
       SCOPED_TRACE(std::string(params.adaptive ? "adaptive" : "uniform") + ", scale 2^" + std::to_string(exponent));
       const QuadMesh scaled = run(scale, params);

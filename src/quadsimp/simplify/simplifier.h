@@ -60,7 +60,9 @@ class Simplifier {
   // ratios of noise left the bump test with 71% regular vertices and 2.3x the RMS of a
   // single mu. clamped_s() keeps F_S within the same bound; this one holds without the
   // clamp (s_percentiles 0).
-  double target_size(double s) const { return std::clamp(s_mid_ / std::max(s, 1e-30), 0.5, 2.0); }
+  double target_size(double s) const {
+    return std::clamp(s_mid_ / std::max(s, double(std::numeric_limits<float>::min())), 0.5, 2.0);
+  }
   // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
   // once it passes the topology and valence checks. The loop and blocked_share() both
   // ask here, so that the halting measure sees exactly the collapses the loop would do.

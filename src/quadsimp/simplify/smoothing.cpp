@@ -16,7 +16,7 @@ constexpr double kSqrt2 = 1.4142135623730951;
 Vec3 spring_point(const Vec3& p, const Vec3& q, double rest) {
   const Vec3 d = p - q;
   const double l = d.norm();
-  return l > 1e-30 ? Vec3(q + rest * d / l) : p;
+  return l > 0 ? Vec3(q + rest * d / l) : p;  // not an absolute tolerance: lengths have units
 }
 
 }  // namespace
