@@ -66,6 +66,20 @@ TEST(Clean, repairs_and_logs) {
   EXPECT_NE(notes[0].find("in.ply"), std::string::npos);
 }
 
+TEST(Clean, a_stray_vertex_far_off_sets_no_tolerance) {
+  // Tolerances are relative to the mesh's size: a vertex no face uses, a million units
+  // off a unit grid, made that size a million times larger, and every border vertex
+  // within one unit merged (bunny.ply with such a vertex at x = 1e6 came out with no quad
+  // at all; at 1e3, 14 border vertices merged and 20 faces gone).
+  TriMesh t = tri_grid(20, 20), before = t;
+  t.positions.emplace_back(1e6, 0, 0);
+  const CleanReport r = clean(t);
+  EXPECT_EQ(r.removed_unreferenced_vertices, 1u);
+  EXPECT_FALSE(r.changed_faces());
+  EXPECT_EQ(t.faces, before.faces);
+  EXPECT_EQ(t.positions, before.positions);
+}
+
 TEST(Clean, merges_copies_of_a_pole_a_rounding_error_apart) {
   // The south pole written once per segment, each copy off by a rounding error: exact
   // merging misses them, and the edges between them bound a hole of no size.

@@ -195,7 +195,7 @@ bool merge_close_border_vertices(TriMesh& m, const std::vector<std::array<Index,
   // Cells of 1024 eps, 21 bits per axis from the box's corner (the box spans 1000):
   // a vertex is compared with the border vertices in its cell, and with a neighbour
   // cell's only when within eps of it.
-  const auto box = bbox(m.positions);
+  const auto box = used_bbox(m);
   const Vec3 corner = box.first;  // a lambda below captures it: not a structured binding
   const double eps = 1e-6 * (box.second - box.first).norm(), cell = 1024 * eps;
   if (!(eps > 0)) return false;
@@ -374,8 +374,8 @@ Index zip_cracks(TriMesh& m, std::vector<std::array<Index, 3>> adj) {
 }
 
 void remove_degenerate_and_duplicate_faces(TriMesh& m, CleanReport& r) {
-  const double diag = bbox_diagonal(m.positions);
-  const double min_area2 = std::pow(1e-12 * diag, 4);  // squared twice-area, relative to size
+  const auto [lo, hi] = used_bbox(m);
+  const double min_area2 = std::pow(1e-12 * (hi - lo).norm(), 4);  // squared twice-area, relative to size
   std::vector<std::array<Index, 3>> kept;
   kept.reserve(m.faces.size());
   for (const auto& t : m.faces) {
@@ -995,6 +995,15 @@ void sort_spatially(TriMesh& m) {
 }
 
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& t) { return adjacency_from(t, corners_around(t)); }
+
+std::pair<Vec3, Vec3> used_bbox(const TriMesh& m) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& f : m.faces)
+    for (Index v : f)
+      if (v < m.n_vertices()) lo = lo.cwiseMin(m.positions[v]), hi = hi.cwiseMax(m.positions[v]);
+  if (m.faces.empty()) lo = hi = Vec3::Zero();
+  return {lo, hi};
+}
 
 double bbox_diagonal(const std::vector<Vec3>& positions) {
   const auto [lo, hi] = bbox(positions);

@@ -105,6 +105,10 @@ void sort_spatially(TriMesh& mesh);
 //! Length of the diagonal of the axis-aligned bounding box.
 double bbox_diagonal(const std::vector<Vec3>& positions);
 
+//! The axis-aligned bounding box of the vertices the faces use: a stray vertex no face
+//! uses, far off, must not set the size tolerances are relative to.
+std::pair<Vec3, Vec3> used_bbox(const TriMesh& mesh);
+
 //! The point to subtract before float or moment arithmetic: the bounding box's centre
 //! when it lies farther from the origin than the box's diagonal (a scan in survey
 //! coordinates, a million units out: float rounds it to a quarter unit, and moments
