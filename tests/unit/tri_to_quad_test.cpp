@@ -13,6 +13,7 @@
 #include "quadsimp/convert/prepare_input.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
+#include "quadsimp/util/errors.h"
 
 using namespace qs;
 using namespace qs::fixtures;
@@ -211,4 +212,28 @@ TEST(PrepareInput, says_when_the_surface_is_long_thin_triangles) {
   EXPECT_NE(one_row.find("remesh first"), std::string::npos) << one_row;
   EXPECT_EQ(notes_of(cad_cylinder(64, 8, 2.0)).find(note), std::string::npos);
   EXPECT_EQ(notes_of(tri_sphere(30, 40)).find(note), std::string::npos);
+}
+
+TEST(PrepareInput, refuses_a_mesh_too_small_or_too_large_to_compute_with) {
+  // Lengths are squared and raised to the fourth power: bunny.ply 2^1000 times larger came
+  // out with no quad at all, and no error. A unit sphere scaled by 1e+-25 is taken, by
+  // 1e+-35 and 1e+-300 refused with the reason; a stray vertex no face uses does not count.
+  for (const double scale : {1e-300, 1e-35, 1e-25, 1e25, 1e35, 1e300}) {
+    SCOPED_TRACE(scale);
+    MeshFile file{{}, tri_sphere(8, 12).faces, {}};
+    for (const Vec3& p : tri_sphere(8, 12).positions) file.positions.push_back(scale * p);
+    file.positions.push_back(Vec3(1e300, 0, 0));  // unreferenced
+    if (scale > 1e-30 && scale < 1e30) {
+      EXPECT_NO_THROW(prepare_input(file, "sphere"));
+    } else {
+      try {
+        prepare_input(file, "sphere");
+        ADD_FAILURE() << "not refused";
+      } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("sphere: the mesh is "), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("quadsimp takes meshes from 1e-30 to 1e30 units across"),
+                  std::string::npos) << e.what();
+      }
+    }
+  }
 }
