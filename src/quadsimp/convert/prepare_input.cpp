@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "quadsimp/util/errors.h"
 
@@ -20,27 +19,6 @@ constexpr double kThinTriangle = 0.1;
 // datasets have under 0.1% of their area in such triangles; a sphere of 100 rings of 400
 // has 2%, a cylinder of eight rows 33% (its caps): those three give even quads.
 constexpr double kThinShare = 0.5;
-
-// Lengths are squared and raised to the fourth power in double precision, and fitmaps
-// (per length) are kept in single precision: bunny.ply gives the same quads, scaled, from
-// 2^-100 to 2^120 times its size (2e-31 to 3e35 across; bench/RESULTS.md, "Units of
-// length"). Past that the results degrade (2^150: 39 quads at automatic halting instead of
-// 657; 2^1000: no quad at all, before this check), so meshes beyond these sizes, with a
-// margin, are refused.
-constexpr double kSmallestDiagonal = 1e-30, kLargestDiagonal = 1e30;
-
-// Before cleaning, whose tolerances are relative to the size.
-void check_size(const TriMesh& t, const std::string& name) {
-  const auto [lo, hi] = used_bbox(t);
-  const double d = (hi - lo).stableNorm();  // norm() overflows past 1e154
-  // No faces, NaN or infinite coordinates: clean() says so.
-  if (t.faces.empty() || !std::isfinite(d) || (d >= kSmallestDiagonal && d <= kLargestDiagonal)) return;
-  char size[32];
-  std::snprintf(size, sizeof size, "%.3g", d);
-  throw InvalidInput(name + ": the mesh is " + size + " units across (its bounding box's diagonal); quadsimp takes "
-                     "meshes from 1e-30 to 1e30 units across: scale it first (MeshLab: \"Transform: Scale, "
-                     "Normalize\")");
-}
 
 double thin_area_share(const TriMesh& t) {
   double thin = 0, total = 0;
@@ -60,7 +38,6 @@ double thin_area_share(const TriMesh& t) {
 Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions& options, const LogFn& log) {
   Input in;
   in.reference = triangles_of(file);
-  check_size(in.reference, name);
   in.clean = clean(in.reference, name, log);
   sort_spatially(in.reference);
   const double thin = log ? thin_area_share(in.reference) : 0.0;

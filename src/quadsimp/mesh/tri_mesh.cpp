@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -1105,6 +1106,29 @@ std::vector<Index> first_equal_positions(const std::vector<Vec3>& positions) {
   return first;
 }
 
+namespace {
+
+// Lengths are squared and raised to the fourth power in double precision, and fitmaps
+// (per length) are kept in single precision: bunny.ply gives the same quads, scaled, from
+// 2^-100 to 2^120 times its size (2e-31 to 3e35 across; bench/RESULTS.md, "Units of
+// length"). Past that the results degrade (2^150: 39 quads at automatic halting instead of
+// 657; 2^1000: no quad at all), so meshes beyond these sizes, with a margin, are refused,
+// before any tolerance relative to the size is taken.
+constexpr double kSmallestDiagonal = 1e-30, kLargestDiagonal = 1e30;
+
+void check_size(const TriMesh& m, const std::string& src) {
+  const auto [lo, hi] = used_bbox(m);
+  const double d = (hi - lo).stableNorm();  // norm() overflows past 1e154
+  if (d >= kSmallestDiagonal && d <= kLargestDiagonal) return;
+  char size[32];
+  std::snprintf(size, sizeof size, "%.3g", d);
+  throw InvalidInput(src + ": the mesh is " + size + " units across (its bounding box's diagonal); quadsimp takes "
+                     "meshes from 1e-30 to 1e30 units across: scale it first (MeshLab: \"Transform: Scale, "
+                     "Normalize\")");
+}
+
+}  // namespace
+
 CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
   CleanReport r;
   if (m.positions.empty()) throw InvalidInput(src + ": the mesh is empty (no vertices)");
@@ -1120,6 +1144,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
         throw InvalidInput(src + ": face " + std::to_string(f) + " refers to vertex " +
                            std::to_string(v) + ", out of range (" + std::to_string(m.n_vertices()) +
                            " vertices)");
+  check_size(m, src);
 
   merge_duplicate_vertices(m, r);
   remove_degenerate_and_duplicate_faces(m, r);

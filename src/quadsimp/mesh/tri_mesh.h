@@ -87,7 +87,8 @@ struct CleanReport {
 //! region faces the way the patch's own surroundings do (not those on the border). Only patches that are discs
 //! are tried: a band round a post with an overhanging wall stays.
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
-//!        out-of-range indices, a non-orientable component. `what` is one sentence;
+//!        out-of-range indices, a size outside 1e-30 to 1e30 across (the faces' bounding
+//!        box), a non-orientable component. `what` is one sentence;
 //!        `source` (a file name) prefixes it.
 CleanReport clean(TriMesh& mesh, const std::string& source = "mesh", const LogFn& log = {});
 
