@@ -160,7 +160,7 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   origin_ = working_origin(P);
   unit_ = diagonal_ > 0 ? std::ldexp(1.0, -std::ilogb(diagonal_)) : 1.0;
   for (std::size_t i = 0; i < P.size(); ++i)
-    for (int k = 0; k < 3; ++k) xyz[3 * i + k] = float((P[i][k] - origin_[k]) * unit_);
+    Eigen::Vector3f::Map(xyz + 3 * i) = to_embree(P[i]);
   auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                              3 * sizeof(unsigned), mesh_.faces.size()));
   for (std::size_t f = 0; f < mesh_.faces.size(); ++f)
@@ -186,9 +186,8 @@ SurfacePoint ReferenceSurface::ray_project(const Vec3& p, const Vec3& dir, doubl
       RTCIntersectContext ctx;
       rtcInitIntersectContext(&ctx);
       RTCRayHit rh;
-      rh.ray.org_x = float((p.x() - origin_.x()) * unit_);
-      rh.ray.org_y = float((p.y() - origin_.y()) * unit_);
-      rh.ray.org_z = float((p.z() - origin_.z()) * unit_);
+      const Eigen::Vector3f org = to_embree(p);
+      rh.ray.org_x = org.x(), rh.ray.org_y = org.y(), rh.ray.org_z = org.z();
       rh.ray.dir_x = float(sign * d.x());
       rh.ray.dir_y = float(sign * d.y());
       rh.ray.dir_z = float(sign * d.z());
@@ -220,9 +219,8 @@ SurfacePoint ReferenceSurface::ray_project(const Vec3& p, const Vec3& dir, doubl
 SurfacePoint ReferenceSurface::closest(const Vec3& p, double max_dist, const Vec3& normal) const {
   SurfacePoint best;
   RTCPointQuery q;
-  q.x = float((p.x() - origin_.x()) * unit_);
-  q.y = float((p.y() - origin_.y()) * unit_);
-  q.z = float((p.z() - origin_.z()) * unit_);
+  const Eigen::Vector3f at = to_embree(p);
+  q.x = at.x(), q.y = at.y(), q.z = at.z();
   q.time = 0.f;
   q.radius = std::isfinite(max_dist) ? float(max_dist * unit_) : std::numeric_limits<float>::infinity();
   RTCPointQueryContext ctx;

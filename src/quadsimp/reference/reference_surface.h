@@ -95,6 +95,8 @@ class ReferenceSurface {
   double diagonal_ = 0, mean_edge_ = 0;
   Vec3 origin_ = Vec3::Zero();  // subtracted from every point Embree sees
   double unit_ = 1;             // then multiplied by this power of two (Embree's unit length)
+  // A point as Embree holds it.
+  Eigen::Vector3f to_embree(const Vec3& p) const { return ((p - origin_) * unit_).cast<float>(); }
   struct Bvh;
   std::unique_ptr<Bvh> bvh_;
 };
