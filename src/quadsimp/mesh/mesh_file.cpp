@@ -15,9 +15,12 @@ MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array
     const unsigned b = faux[t] & 7u;
     return b == 1 ? 0 : b == 2 ? 1 : b == 4 ? 2 : -1;
   };
-  bool any = false;  // a triangle with one faux edge
-  for (Index t = 0; t < n && faux.size() == tris.size() && !any; ++t) any = faux_edge(t) >= 0;
-  if (!any) {
+  const auto any_faux = [&] {
+    for (Index t = 0; t < n; ++t)
+      if (faux_edge(t) >= 0) return true;
+    return false;
+  };
+  if (faux.size() != tris.size() || !any_faux()) {
     out.triangles = std::move(tris);
     return out;
   }
@@ -33,23 +36,24 @@ MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array
   auto key = [](Index a, Index b) { return (std::uint64_t(a) << 32) | b; };
   std::unordered_multimap<std::uint64_t, Index> dir;  // built on first need
   std::vector<char> done(n, 0);
+  // The partner of t, whose faux edge is k, or n.
+  const auto partner = [&](Index t, int k) {
+    if (t + 1 < n && !done[t + 1] && partners(t, t + 1)) return t + 1;
+    if (dir.empty()) {
+      dir.reserve(3 * std::size_t(n));
+      for (Index x = 0; x < n; ++x)
+        for (int i = 0; i < 3; ++i) dir.emplace(key(tris[x][i], tris[x][(i + 1) % 3]), x);
+    }
+    const auto range = dir.equal_range(key(tris[t][(k + 1) % 3], tris[t][k]));
+    for (auto it = range.first; it != range.second; ++it)
+      if (!done[it->second] && partners(t, it->second)) return it->second;
+    return n;
+  };
   for (Index t = 0; t < n; ++t) {
     if (done[t]) continue;
     done[t] = 1;
     const int k = faux_edge(t);
-    Index u = n;
-    if (k >= 0 && t + 1 < n && !done[t + 1] && partners(t, t + 1)) {
-      u = t + 1;
-    } else if (k >= 0) {
-      if (dir.empty()) {
-        dir.reserve(3 * std::size_t(n));
-        for (Index x = 0; x < n; ++x)
-          for (int i = 0; i < 3; ++i) dir.emplace(key(tris[x][i], tris[x][(i + 1) % 3]), x);
-      }
-      const auto range = dir.equal_range(key(tris[t][(k + 1) % 3], tris[t][k]));
-      for (auto it = range.first; it != range.second && u == n; ++it)
-        if (!done[it->second] && partners(t, it->second)) u = it->second;
-    }
+    const Index u = k >= 0 ? partner(t, k) : n;
     // A file of triangles and quads keeps its quads: fanned from their first corner, a
     // skewed quad was a cap, and a doublet (two quads on three corners, which MeshLab's
     // pairing leaves) two copies of one triangle once the other quad was split onto it.
