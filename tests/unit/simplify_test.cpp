@@ -36,6 +36,14 @@ Case prepare(TriMesh t) {
   return {std::move(t), std::move(q)};
 }
 
+// A uniform run to `faces` quads, and an adaptive one with automatic halting.
+std::array<SimplifyParams, 2> uniform_and_halting(Index faces) {
+  SimplifyParams uniform, adaptive;
+  uniform.target_faces = faces;
+  adaptive.adaptive = adaptive.auto_halt = true;
+  return {uniform, adaptive};
+}
+
 Index count_components(const QuadMesh& m) {
   std::vector<Index> component;
   return connected_components(m, component);
@@ -971,10 +979,7 @@ TEST(Simplify, results_do_not_depend_on_the_unit_of_length) {
     validate(in.quads);
     return in.quads;
   };
-  SimplifyParams uniform, adaptive;
-  uniform.target_faces = 150;
-  adaptive.adaptive = adaptive.auto_halt = true;
-  for (const SimplifyParams& params : {uniform, adaptive}) {
+  for (const SimplifyParams& params : uniform_and_halting(150)) {
     const QuadMesh unit = run(1.0, params);
     for (const int exponent : {-96, -60, -40, -20, 20, 40, 60, 96}) {
       const double scale = std::ldexp(1.0, exponent);
@@ -1004,10 +1009,7 @@ TEST(Simplify, results_do_not_depend_on_the_order_of_faces_and_vertices_in_the_f
   }
   for (const auto& f : base.faces) shuffled.triangles.push_back({new_id[f[0]], new_id[f[1]], new_id[f[2]]});
   std::shuffle(shuffled.triangles.begin(), shuffled.triangles.end(), rng);
-  SimplifyParams uniform, adaptive;
-  uniform.target_faces = 150;
-  adaptive.adaptive = adaptive.auto_halt = true;
-  for (const SimplifyParams& params : {uniform, adaptive}) {
+  for (const SimplifyParams& params : uniform_and_halting(150)) {
     SCOPED_TRACE(params.adaptive ? "adaptive" : "uniform");
     std::vector<std::vector<std::array<Vec3, 4>>> results;
     for (const MeshFile& file : {MeshFile{base.positions, base.faces, {}}, shuffled}) {
