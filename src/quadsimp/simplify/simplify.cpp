@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/ops/cleaning.h"
@@ -303,6 +305,19 @@ void Simplifier::after_change(const Index* first, const Index* last) {
   requeue_region();
   if (has_border_)
     for (Index v : region_verts_) note_border(v);
+  if (opt_.check_invariants) check_invariants();
+}
+
+// Border coarsening visits only its candidates (border_candidates_): a vertex an
+// operation brings to the border must be noted by after_change(), or it is never
+// coarsened, and nothing else would show it.
+void Simplifier::check_invariants() const {
+  validate(m_);
+  if (const Index shared = count_shared_diagonals(m_); shared > 0)
+    throw std::logic_error("simplify: " + std::to_string(shared) + " diagonals whose corners share another quad");
+  for (Index v = 0; v < m_.vertex_capacity(); ++v)
+    if (m_.is_vertex_live(v) && m_.is_border_vertex(v) && !border_noted_[v])
+      throw std::logic_error("simplify: border vertex " + std::to_string(v) + " is not a border-coarsening candidate");
 }
 
 SimplifyReport Simplifier::run() {
@@ -341,6 +356,7 @@ SimplifyReport Simplifier::run() {
   border_noted_.assign(m_.vertex_capacity(), 0);
   for (Index v = 0; v < m_.vertex_capacity(); ++v) note_border(v);
   has_border_ = !border_candidates_.empty();
+  if (opt_.check_invariants) check_invariants();
   component_mu_.assign(connected_components(m_, component_), 0.0);
   update_mu();
   if (opt_.initial_sweeps > 0) {
@@ -435,6 +451,7 @@ SimplifyReport Simplifier::run() {
   if (opt_.adaptive && !halted) rep_.blocked_share = blocked_share();
   rep_.ran_out = measure && !halted && !rep_.cancelled;
   if (opt_.unfold && !opt_.refuse_folds && !rep_.cancelled) unfold();
+  if (opt_.check_invariants) check_invariants();
   m_.compact();
   rep_.faces = m_.n_faces();
   rep_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
