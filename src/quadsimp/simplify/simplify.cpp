@@ -231,8 +231,7 @@ double Simplifier::predicted_halt() const {
 // adaptive bunny's loop, judged one by one); the areas are summed in face order, so the
 // share, and where the run halts, do not depend on the threads.
 double Simplifier::blocked_share() {
-  std::vector<double>& blocked = blocked_area_;
-  blocked.assign(m_.face_capacity(), 0.0);
+  blocked_area_.assign(m_.face_capacity(), 0.0);
   tbb::parallel_for(tbb::blocked_range<Index>(0, m_.face_capacity(), 512), [&](const tbb::blocked_range<Index>& r) {
     for (Index f = r.begin(); f != r.end(); ++f) {
       if (!m_.is_face_live(f)) continue;
@@ -244,11 +243,11 @@ double Simplifier::blocked_share() {
         allowed = v == Verdict::Ok;
         refused |= v == Verdict::Fitmap;
       }
-      if (refused && !allowed) blocked[f] = 0.5 * m_.face_area_normal(f).norm();
+      if (refused && !allowed) blocked_area_[f] = 0.5 * m_.face_area_normal(f).norm();
     }
   });
   double sum = 0;
-  for (double a : blocked) sum += a;
+  for (double a : blocked_area_) sum += a;
   return area_ > 0 ? sum / area_ : 0.0;
 }
 
