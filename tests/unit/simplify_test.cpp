@@ -305,8 +305,8 @@ TEST(Simplify, every_change_keeps_the_mesh_valid_and_every_border_vertex_a_candi
   // SimplifyOptions::check_invariants validates after each collapse, ear, chord and the
   // rotations and smoothing after it. Border coarsening visits only the vertices noted
   // as candidates: one an operation brought to the border unnoted would never be
-  // coarsened, and no final check would show it. Shapes with borders, holes and a
-  // strip (chords), in both modes.
+  // coarsened, and no final check would show it. Shapes with borders, holes, a strip
+  // (chords), folds (unfolding) and cracks, in both modes.
   auto without_faces = [](TriMesh t, auto&& drop) {
     std::vector<std::array<Index, 3>> kept;
     for (const auto& f : t.faces)
@@ -328,8 +328,11 @@ TEST(Simplify, every_change_keeps_the_mesh_valid_and_every_border_vertex_a_candi
        60},
       {"holes, adaptive", without_faces(tri_sphere(16, 32), [](const Vec3& c) { return c.x() > 0.9; }), 0},
       {"strip", strip, 10},
+      {"torus", tri_torus(12, 24), 30},
+      {"cylinder of long triangles (folds, unfolding)", cad_cylinder(32, 1, 2.0), 30},
+      {"patches meshed apart (cracks zipped)", patches_meshed_apart(3, 0.5), 40},
   };
-  Index border_collapses = 0;
+  Index border_collapses = 0, chord_collapses = 0, unfolds = 0;
   for (const Run& run : runs) {
     SCOPED_TRACE(run.name);
     Case c = prepare(run.tri);
@@ -345,10 +348,12 @@ TEST(Simplify, every_change_keeps_the_mesh_valid_and_every_border_vertex_a_candi
     }
     SimplifyReport r;
     EXPECT_NO_THROW(r = simplify(c.quads, ref, opt));
-    EXPECT_LT(r.faces, r.initial_faces / 2);
-    border_collapses += r.border_collapses;
+    EXPECT_LT(r.faces, r.initial_faces * 2 / 3);
+    border_collapses += r.border_collapses, chord_collapses += r.chord_collapses, unfolds += r.unfolds;
   }
-  EXPECT_GT(border_collapses, 20u);
+  EXPECT_GT(border_collapses, 20u);  // each kind of change was checked
+  EXPECT_GT(chord_collapses, 0u);
+  EXPECT_GT(unfolds, 0u);
 }
 
 TEST(Simplify, table1_rows_meet_the_uniform_targets) {
