@@ -44,6 +44,30 @@ std::array<SimplifyParams, 2> uniform_and_halting(Index faces) {
   return {uniform, adaptive};
 }
 
+// The whole job on a file, as the CLI runs it.
+Input simplified(const MeshFile& file, const SimplifyParams& params) {
+  Input in = prepare_input(file, "mesh");
+  const ReferenceSurface ref(in.reference);
+  simplify_input(in, ref, params);
+  return in;
+}
+
+// b is a, quad for quad and vertex for vertex, with every position `scale` times a's.
+void expect_scaled_copy(const QuadMesh& a, const QuadMesh& b, double scale) {
+  ASSERT_EQ(b.quads(), a.quads());
+  for (Index v = 0; v < a.n_vertices(); ++v) ASSERT_EQ(b.position(v), scale * a.position(v)) << v;
+}
+
+// t without the faces whose centroid `drop` takes.
+template <class Drop>
+TriMesh without_faces(TriMesh t, Drop&& drop) {
+  std::vector<std::array<Index, 3>> kept;
+  for (const auto& f : t.faces)
+    if (!drop((t.positions[f[0]] + t.positions[f[1]] + t.positions[f[2]]) / 3)) kept.push_back(f);
+  t.faces = std::move(kept);
+  return t;
+}
+
 Index count_components(const QuadMesh& m) {
   std::vector<Index> component;
   return connected_components(m, component);
@@ -284,14 +308,7 @@ TEST(Simplify, l_shape_keeps_its_six_corners) {
   // third of mu here).
   for (Index target : {150u, 300u, 600u}) {
     SCOPED_TRACE(target);
-    TriMesh t = tri_grid(60, 60);
-    std::vector<std::array<Index, 3>> kept;
-    for (const auto& f : t.faces) {
-      const Vec3 c = (t.positions[f[0]] + t.positions[f[1]] + t.positions[f[2]]) / 3;
-      if (!(c.x() > 0.5 && c.y() > 0.5)) kept.push_back(f);
-    }
-    t.faces = kept;
-    Case c = prepare(std::move(t));
+    Case c = prepare(without_faces(tri_grid(60, 60), [](const Vec3& c) { return c.x() > 0.5 && c.y() > 0.5; }));
     const ReferenceSurface ref(c.tri);
     run_and_check(c.quads, target, ref);
     for (const Vec3& corner : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0.5, 0), Vec3(0.5, 0.5, 0), Vec3(0.5, 1, 0),
@@ -307,13 +324,6 @@ TEST(Simplify, every_change_keeps_the_mesh_valid_and_every_border_vertex_a_candi
   // as candidates: one an operation brought to the border unnoted would never be
   // coarsened, and no final check would show it. Shapes with borders, holes, a strip
   // (chords), folds (unfolding) and cracks, in both modes.
-  auto without_faces = [](TriMesh t, auto&& drop) {
-    std::vector<std::array<Index, 3>> kept;
-    for (const auto& f : t.faces)
-      if (!drop((t.positions[f[0]] + t.positions[f[1]] + t.positions[f[2]]) / 3)) kept.push_back(f);
-    t.faces = kept;
-    return t;
-  };
   TriMesh strip = tri_grid(40, 1);
   for (Vec3& p : strip.positions) p = Vec3(p.x(), p.y() / 40, 0.2 * std::sin(M_PI * p.x()));
   struct Run {
@@ -1027,10 +1037,8 @@ TEST(Simplify, results_do_not_depend_on_the_unit_of_length) {
   const auto run = [&](double scale, const SimplifyParams& params) {
     MeshFile file{base.positions, base.faces, {}};
     for (Vec3& p : file.positions) p *= scale;
-    Input in = prepare_input(file, "grid");
-    const ReferenceSurface ref(in.reference);
+    const Input in = simplified(file, params);
     EXPECT_EQ(in.clean.unfolded_patches, 1u) << "scale " << scale;
-    simplify_input(in, ref, params);
     validate(in.quads);
     return in.quads;
   };
@@ -1039,17 +1047,15 @@ TEST(Simplify, results_do_not_depend_on_the_unit_of_length) {
     for (const int exponent : {-96, -60, -40, -20, 20, 40, 60, 96}) {
       const double scale = std::ldexp(1.0, exponent);
       SCOPED_TRACE(std::string(params.adaptive ? "adaptive" : "uniform") + ", scale 2^" + std::to_string(exponent));
-      const QuadMesh scaled = run(scale, params);
-      ASSERT_EQ(scaled.quads(), unit.quads());
-      for (Index v = 0; v < unit.n_vertices(); ++v) ASSERT_EQ(scaled.position(v), scale * unit.position(v)) << v;
+      expect_scaled_copy(unit, run(scale, params), scale);
     }
   }
 }
 
 TEST(Simplify, results_do_not_depend_on_the_order_of_faces_and_vertices_in_the_file) {
   // Loading renumbers faces along a Morton curve and vertices by first use
-  // (sort_spatially()), so a file written in another order gives the same quads, corner
-  // for corner. Not tested, because they do count: the order of the corners within each
+  // (sort_spatially()), so a file written in another order gives the same quads, vertex
+  // for vertex. Not tested, because they do count: the order of the corners within each
   // triangle (rounding differs), and, where folds are laid flat on loading, the order in
   // which their vertices are solved for (the file's).
   const TriMesh base = tri_grid(40, 40, 0.3);
@@ -1066,17 +1072,7 @@ TEST(Simplify, results_do_not_depend_on_the_order_of_faces_and_vertices_in_the_f
   std::shuffle(shuffled.triangles.begin(), shuffled.triangles.end(), rng);
   for (const SimplifyParams& params : uniform_and_halting(150)) {
     SCOPED_TRACE(params.adaptive ? "adaptive" : "uniform");
-    std::vector<std::vector<std::array<Vec3, 4>>> results;
-    for (const MeshFile& file : {MeshFile{base.positions, base.faces, {}}, shuffled}) {
-      Input in = prepare_input(file, "grid");
-      const ReferenceSurface ref(in.reference);
-      simplify_input(in, ref, params);
-      std::vector<std::array<Vec3, 4>> corners;
-      for (const auto& q : in.quads.quads())
-        corners.push_back({in.quads.position(q[0]), in.quads.position(q[1]), in.quads.position(q[2]),
-                           in.quads.position(q[3])});
-      results.push_back(std::move(corners));
-    }
-    EXPECT_EQ(results[0], results[1]);
+    expect_scaled_copy(simplified(MeshFile{base.positions, base.faces, {}}, params).quads,
+                       simplified(shuffled, params).quads, 1.0);
   }
 }
