@@ -1,7 +1,6 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include "quadsimp/convert/prepare_input.h"
 
-#include <algorithm>
 #include <cmath>
 
 #include "quadsimp/util/errors.h"
@@ -22,13 +21,11 @@ constexpr double kThinShare = 0.5;
 
 double thin_area_share(const TriMesh& t) {
   double thin = 0, total = 0;
+  Index longest;
   for (const auto& f : t.faces) {
     const double area2 = t.area_normal(f).norm();
-    double longest2 = 0;
-    for (int k = 0; k < 3; ++k)
-      longest2 = std::max(longest2, (t.positions[f[(k + 1) % 3]] - t.positions[f[k]]).squaredNorm());
     total += area2;
-    if (area2 < kThinTriangle * longest2) thin += area2;
+    if (thinness(t, f, longest) < kThinTriangle) thin += area2;
   }
   return total > 0 ? thin / total : 0.0;
 }

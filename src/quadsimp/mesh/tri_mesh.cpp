@@ -542,18 +542,6 @@ std::uint64_t spread_bits3(std::uint64_t x) {
   return x;
 }
 
-// Thinness of a triangle, twice its area over its longest edge squared (its height over
-// that edge, in edge lengths), and which edge (k: corners k, k+1) is the longest.
-double thinness(const TriMesh& m, const std::array<Index, 3>& t, Index& longest) {
-  const auto& P = m.positions;
-  double l2 = -1;
-  for (Index k = 0; k < 3; ++k) {
-    const double e2 = (P[t[(k + 1) % 3]] - P[t[k]]).squaredNorm();
-    if (e2 > l2) l2 = e2, longest = k;
-  }
-  return m.area_normal(t).norm() / l2;
-}
-
 // Whether the corner opposite edge k stands over the edge's inner four fifths: a thin
 // triangle with its apex there is a cap, one with its apex near an end a needle (two
 // corners almost together), whose flip only makes another needle.
@@ -962,6 +950,16 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
 }
 
 }  // namespace
+
+double thinness(const TriMesh& m, const std::array<Index, 3>& t, Index& longest) {
+  const auto& P = m.positions;
+  double l2 = -1;
+  for (Index k = 0; k < 3; ++k) {
+    const double e2 = (P[t[(k + 1) % 3]] - P[t[k]]).squaredNorm();
+    if (e2 > l2) l2 = e2, longest = k;
+  }
+  return m.area_normal(t).norm() / l2;
+}
 
 void sort_spatially(TriMesh& m) {
   if (m.faces.empty()) return;

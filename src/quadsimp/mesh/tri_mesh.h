@@ -44,6 +44,10 @@ inline constexpr double kLaidFlatCos = -0.2;
 
 inline double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
 
+//! Thinness of triangle t: twice its area over its longest edge squared (its height over
+//! that edge, in edge lengths); `longest` is set to that edge (k: corners k, k+1).
+double thinness(const TriMesh& mesh, const std::array<Index, 3>& t, Index& longest);
+
 //! The triangles' unit normals.
 std::vector<Vec3> unit_normals(const TriMesh& mesh);
 
