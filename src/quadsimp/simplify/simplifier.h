@@ -20,6 +20,11 @@
 
 namespace qs::detail {
 
+// The least F_S the sizing divides by: a flat part's F_S is 0. Float's smallest normal
+// number, not a length-like constant, so that it holds at every unit of length (F_S is
+// per length, and kept in float).
+inline constexpr double kLeastS = double(std::numeric_limits<float>::min());
+
 // One candidate collapse: diagonal k (corners k, k+2) of `face`, valid while the
 // face's version is unchanged (lazy invalidation).
 struct Entry {
@@ -60,9 +65,7 @@ class Simplifier {
   // ratios of noise left the bump test with 71% regular vertices and 2.3x the RMS of a
   // single mu. clamped_s() keeps F_S within the same bound; this one holds without the
   // clamp (s_percentiles 0).
-  double target_size(double s) const {
-    return std::clamp(s_mid_ / std::max(s, double(std::numeric_limits<float>::min())), 0.5, 2.0);
-  }
+  double target_size(double s) const { return std::clamp(s_mid_ / std::max(s, kLeastS), 0.5, 2.0); }
   // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
   // once it passes the topology and valence checks. The loop and blocked_share() both
   // ask here, so that the halting measure sees exactly the collapses the loop would do.

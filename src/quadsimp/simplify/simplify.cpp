@@ -338,9 +338,7 @@ SimplifyReport Simplifier::run() {
   if (opt_.adaptive) {
     std::vector<float> sorted = opt_.fitmaps->s;
     std::sort(sorted.begin(), sorted.end());
-    // A scale only (sizes are relative); the floor keeps a flat mesh's F_S of 0 from
-    // dividing by zero, at any unit of length (F_S is per length).
-    s_mid_ = std::max(double(sorted[sorted.size() / 2]), double(std::numeric_limits<float>::min()));
+    s_mid_ = std::max(double(sorted[sorted.size() / 2]), kLeastS);  // a scale only: sizes are relative
     if (const double q = opt_.s_percentiles; q > 0) {
       s_lo_ = std::max(double(sorted[std::size_t(q * (sorted.size() - 1))]), 0.5 * s_mid_);
       s_hi_ = std::min(double(sorted[std::size_t((1 - q) * (sorted.size() - 1))]), 2.0 * s_mid_);
