@@ -219,10 +219,11 @@ TEST(PrepareInput, refuses_a_mesh_too_small_or_too_large_to_compute_with) {
   // out with no quad at all, and no error. clean() refuses, so every path does (the
   // conversion, the fitmap and stats commands, the plugins' filters). A unit sphere scaled by 1e+-25 is taken, by
   // 1e+-35 and 1e+-300 refused with the reason; a stray vertex no face uses does not count.
+  const TriMesh sphere = tri_sphere(8, 12);
   for (const double scale : {1e-300, 1e-35, 1e-25, 1e25, 1e35, 1e300}) {
     SCOPED_TRACE(scale);
-    MeshFile file{{}, tri_sphere(8, 12).faces, {}};
-    for (const Vec3& p : tri_sphere(8, 12).positions) file.positions.push_back(scale * p);
+    MeshFile file{{}, sphere.faces, {}};
+    for (const Vec3& p : sphere.positions) file.positions.push_back(scale * p);
     file.positions.push_back(Vec3(1e300, 0, 0));  // unreferenced
     TriMesh t{file.positions, file.triangles};  // as `quadsimp fitmap` and `stats` clean theirs
     if (scale > 1e-30 && scale < 1e30) {
