@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "quadsimp/convert/prepare_input.h"
+#include "quadsimp/mesh/clean.h"
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/metrics/metrics.h"
 #include "quadsimp/reference/reference_surface.h"

@@ -9,6 +9,7 @@
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
+#include "quadsimp/mesh/clean.h"
 #include "quadsimp/metrics/metrics.h"
 #include "quadsimp/reference/reference_surface.h"
 #include "quadsimp/simplify/pipeline.h"

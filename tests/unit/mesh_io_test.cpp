@@ -17,6 +17,7 @@
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/prepare_input.h"
 #include "quadsimp/io/load_input.h"
+#include "quadsimp/mesh/clean.h"
 #include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/util/errors.h"
 

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "fixtures/shapes.h"
+#include "quadsimp/mesh/clean.h"
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/convert/tri_to_quad.h"
 #include "quadsimp/ops/border_ear.h"

@@ -16,6 +16,7 @@
 #include "quadsimp/convert/prepare_input.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
+#include "quadsimp/mesh/clean.h"
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/metrics/metrics.h"
 #include "quadsimp/simplify/pipeline.h"

@@ -6,6 +6,7 @@
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/tri_to_quad.h"
 #include "quadsimp/io/load_input.h"
+#include "quadsimp/mesh/clean.h"
 #include "quadsimp/metrics/metrics.h"
 #include "quadsimp/simplify/simplify.h"
 

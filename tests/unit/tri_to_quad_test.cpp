@@ -13,6 +13,7 @@
 #include "quadsimp/convert/prepare_input.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
+#include "quadsimp/mesh/clean.h"
 #include "quadsimp/util/errors.h"
 
 using namespace qs;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "quadsimp/convert/tri_to_quad.h"
+#include "quadsimp/mesh/clean.h"
 #include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/mesh/quad_mesh.h"
 #include "quadsimp/mesh/tri_mesh.h"

@@ -3,10 +3,8 @@
 
 #include <array>
 #include <functional>
-#include <string>
 #include <vector>
 
-#include "quadsimp/util/progress.h"
 #include "quadsimp/util/types.h"
 
 namespace qs {
@@ -50,51 +48,6 @@ double thinness(const TriMesh& mesh, const std::array<Index, 3>& t, Index& longe
 
 //! The triangles' unit normals.
 std::vector<Vec3> unit_normals(const TriMesh& mesh);
-
-//! What clean() repaired. Every count is also reported through the log function.
-struct CleanReport {
-  Index merged_duplicate_vertices = 0;
-  Index merged_close_vertices = 0;  //!< border vertices within 1e-6 of the bbox diagonal of another
-  Index zipped_t_junctions = 0;     //!< border vertices on a border edge across a crack, split into it
-  Index removed_degenerate_faces = 0;
-  Index removed_duplicate_faces = 0;
-  Index removed_nonmanifold_faces = 0;  //!< at edges with more than two triangles, all but the straightest pair
-  Index removed_unreferenced_vertices = 0;
-  Index split_nonmanifold_vertices = 0;
-  Index flipped_faces = 0;     //!< faces re-oriented to agree with their component
-  Index flipped_edges = 0;     //!< edges flipped to mend caps and single folded-back triangles
-  Index unfolded_patches = 0;  //!< small patches folded back (folded_patches()), laid flat
-  Index moved_vertices = 0;    //!< the vertices moved to lay them flat
-  //! Whether the faces themselves changed (a vertex merged, split or moved, a face
-  //! removed or turned); dropping unreferenced vertices does not count.
-  bool changed_faces() const {
-    return merged_duplicate_vertices + merged_close_vertices + zipped_t_junctions + removed_degenerate_faces +
-               removed_duplicate_faces + removed_nonmanifold_faces + split_nonmanifold_vertices + flipped_faces +
-               flipped_edges + moved_vertices > 0;
-  }
-};
-
-//! Makes `mesh` a clean, oriented, edge- and vertex-manifold triangle mesh, or throws.
-//!
-//! Repairs (each logged): exact-duplicate vertices merged (those on a border, or all of
-//! a piece written twice; interior vertices of two sheets that touch stay apart), border
-//! vertices closer than 1e-6 of the bounding-box diagonal merged, cracks closed where the
-//! border vertices of one side lie along the border edges of the other (T-junctions: each
-//! such edge is split at them; the slit a removed face of no area leaves is one), faces
-//! with a repeated vertex or zero area removed, duplicate faces removed, at an edge with
-//! more than two triangles all removed but the two across which the surface runs on straightest,
-//! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
-//! re-oriented consistently within each component, caps (height under 1e-3 of the
-//! longest edge) and single triangles folded back onto their neighbours mended by
-//! flipping an edge, small patches folded back (folded_patches()) laid flat by moving
-//! their vertices, and if need be up to eight rings of vertices around them while the
-//! region faces the way the patch's own surroundings do (not those on the border). Only patches that are discs
-//! are tried: a band round a post with an overhanging wall stays.
-//! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
-//!        out-of-range indices, a size outside 1e-30 to 1e30 across (the faces' bounding
-//!        box), a non-orientable component. `what` is one sentence;
-//!        `source` (a file name) prefixes it.
-CleanReport clean(TriMesh& mesh, const std::string& source = "mesh", const LogFn& log = {});
 
 //! For each position, the lowest index of the positions equal to it (itself if none
 //! comes before it); non-finite positions map to themselves. clean() merges by it.
