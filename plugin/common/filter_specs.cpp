@@ -26,7 +26,9 @@ const std::vector<FilterSpec>& filter_specs() {
        "faces where the surface is curved), refuses collapses that would make a face larger than the M-fitmap "
        "allows (so that the result stays projectable onto the input), and can stop by itself once the M-fitmap "
        "blocks the halting share of the surface (15% by default). <b>Fit vertices to the input</b> then moves the vertices off the input, along "
-       "their normals, so that the quads lie closer to it. <br>The result goes to a new layer; the input layer is not changed. Quads are stored "
+       "their normals, so that the quads lie closer to it. <br>The result goes to a new layer; the input layer is not changed. "
+       "The result is geometry only: to give it the input's vertex colours, run <i>Vertex Attribute Transfer</i> "
+       "from the input layer to it. Quads are stored "
        "the MeshLab way, as triangle pairs with a faux shared edge: save as PLY with per-face flags, or as OBJ/OFF "
        "with polygons, to keep them." + kCitation},
       {kConvert, "Convert to Pure Quad Mesh", "meshing_tri_to_pure_quad",

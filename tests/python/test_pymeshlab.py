@@ -177,6 +177,26 @@ def meshsets(bunny_path):
     return grid, bunny
 
 
+def test_vertex_attribute_transfer_gives_the_quads_the_inputs_colours(bunny_path):
+    """The result is geometry only; MeshLab's own transfer colours it and keeps the quads (README, Limits)."""
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(bunny_path)
+    box = ms.current_mesh().bounding_box()
+    lo, size = box.min(), box.max() - box.min()
+    ms.compute_color_by_function_per_vertex(x=f"255*(x-({lo[0]}))/({size[0]})", y=f"255*(y-({lo[1]}))/({size[1]})",
+                                            z="0")
+    ms.meshing_quad_mesh_simplification(targetfacenum=1000)
+    assert not ms.mesh(1).has_vertex_color()
+    ms.transfer_attributes_per_vertex(sourcemesh=0, targetmesh=1, colortransfer=True)
+    out = ms.mesh(1)
+    assert is_pure_quad(out) and len(out.polygonal_face_list()) == 1000
+    v, c = out.vertex_matrix(), out.vertex_color_matrix()
+    # Colours follow position on the input, and the quads' vertices lie on it. Each colour is cut
+    # to a byte twice (made, then transferred): under two steps of 255, plus interpolation.
+    assert np.abs(c[:, 0] - (v[:, 0] - lo[0]) / size[0]).max() < 3 / 255
+    assert np.abs(c[:, 1] - (v[:, 1] - lo[1]) / size[1]).max() < 3 / 255
+
+
 def test_conversion(bunny_path):
     for ms in meshsets(bunny_path):
         triangles = ms.current_mesh().face_number()
