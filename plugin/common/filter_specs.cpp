@@ -69,7 +69,9 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "Uniform (off): equal-sized quads, stop at the target. Adaptive (on): quad sizes follow the fitmaps."},
       {kSimplify, "TargetFaceNum", "Target number of quads", ParamKind::Int, -1, 0, 1e9,
        "Stop when the mesh has at most this many quads. Required in uniform mode; in adaptive mode it is "
-       "ignored when automatic halting is on. Default: a tenth of the input's quads."},
+       "ignored when automatic halting is on. A mesh of several pieces shares it among them by area: pieces "
+       "that cannot shrink to their share (scan debris) leave the result above it, and the log says so. "
+       "Default: a tenth of the input's quads."},
       {kSimplify, "AutoHalt", "Automatic halting (adaptive)", ParamKind::Bool, 0, 0, 1,
        "Adaptive mode only: ignore the target and stop once the faces whose collapses the M-fitmap refuses cover "
        "the halting share of the surface (the paper runs until none is allowed, which coarsens the rest far past "

@@ -436,23 +436,78 @@ TEST(Simplify, two_components_both_survive) {
   EXPECT_EQ(count_components(c.quads), 2u);
 }
 
-TEST(Simplify, a_small_component_takes_its_fewest_quads_and_the_large_one_the_rest) {
+// Faces of the output whose centroid lies beyond x.
+Index faces_beyond(const QuadMesh& q, double x) {
+  Index n = 0;
+  for (Index f = 0; f < q.face_capacity(); ++f) n += q.is_face_live(f) && q.face_centroid(f).x() > x;
+  return n;
+}
+
+TEST(Simplify, a_small_component_takes_its_fewest_quads_and_the_large_one_its_share) {
   // A sphere a tenth the size of another, beside it: it cannot hold quads of the
   // mesh's mean edge. With one mean edge for both, its springs were longer than itself,
   // its quads crumpled until every collapse there was refused (75 quads left), and the
   // target was met by taking the large sphere down to 8 quads (RMS 57e-3, 38% of the
-  // output projectable). Each component's springs now rest at its own mean edge.
+  // output projectable). Each component's springs now rest at its own mean edge, and
+  // the large sphere stops at its share of the target by area (about 49.5 of 50).
   Case c = prepare(sphere_beside_sphere(20, 40, 0.1, 1.5));
   const ReferenceSurface ref(c.tri);
-  run_and_check(c.quads, 50, ref);
+  SimplifyOptions opt;
+  opt.target_faces = 50;
+  opt.check_invariants = true;  // the pieces' face counts too
+  const SimplifyReport r = simplify(c.quads, ref, opt);
+  validate(c.quads);
   ASSERT_EQ(count_components(c.quads), 2u);
-  Index small = 0;
-  for (Index f = 0; f < c.quads.n_faces(); ++f) small += c.quads.face_centroid(f).x() > 1.2;
+  const Index small = faces_beyond(c.quads, 1.2);
   EXPECT_LE(small, 10u);  // a cube-like 6 to 8 quads
+  EXPECT_GE(c.quads.n_faces() - small, 45u);
+  EXPECT_LE(c.quads.n_faces() - small, 50u);
+  EXPECT_EQ(r.pieces, 2u);
+  EXPECT_EQ(r.pieces_above_share, 1u);
+  EXPECT_EQ(r.faces_above_share, small);
   const QuadQuality q = quad_quality(c.quads, &ref);
   EXPECT_EQ(q.folded_faces, 0u);
   const SurfaceDistance d = surface_distance(c.quads, ref, 20000);
   EXPECT_LT(d.rms / ref.bbox_diagonal(), 0.02);  // 50 quads on one sphere: about 0.012
+}
+
+TEST(Simplify, pieces_that_cannot_shrink_do_not_take_the_quads_of_the_others) {
+  // Scan debris: 100 flakes (fans of 12 triangles, a hundredth of the sphere's radius
+  // across) beside a sphere. Each flake holds a quad or more whatever the target; paid
+  // for by the sphere, as the count alone asked, a bunny with 300 such flakes asked for
+  // 1,000 quads kept 36. The sphere keeps its share by area, and the log says why the
+  // run ends above the target.
+  TriMesh t = tri_sphere(30, 40);
+  for (int i = 0; i < 100; ++i) {
+    TriMesh flake;
+    const Vec3 centre(3.0 + 0.1 * (i % 10), 0.1 * (i / 10), 0.0);
+    flake.positions.push_back(centre);
+    for (int k = 0; k < 12; ++k) {
+      const double a = 2 * M_PI * k / 12;
+      flake.positions.push_back(centre + 0.01 * Vec3(std::cos(a), std::sin(a), 0.001 * (k % 3)));
+      flake.faces.push_back({0, Index(1 + k), Index(1 + (k + 1) % 12)});
+    }
+    append(t, flake);
+  }
+  Case c = prepare(std::move(t));
+  const ReferenceSurface ref(c.tri);
+  SimplifyOptions opt;
+  opt.target_faces = 300;
+  opt.check_invariants = true;
+  const SimplifyReport r = simplify(c.quads, ref, opt);
+  validate(c.quads);
+  const Index flakes = faces_beyond(c.quads, 2.0), sphere = c.quads.n_faces() - flakes;
+  EXPECT_GE(sphere, 290u);  // its share: 300 times its part of the area, over 99.9%
+  EXPECT_LE(sphere, 300u);
+  EXPECT_GE(flakes, 100u);  // a quad at least per flake
+  EXPECT_EQ(r.pieces, 101u);
+  EXPECT_EQ(r.pieces_above_share, 100u);
+  EXPECT_EQ(r.faces_above_share, flakes);
+  const std::string why = target_shortfall(r, opt.target_faces);
+  EXPECT_NE(why.find("101 pieces"), std::string::npos) << why;
+  EXPECT_NE(why.find("Remove Isolated pieces"), std::string::npos) << why;
+  const QuadQuality q = quad_quality(c.quads, &ref);
+  EXPECT_EQ(q.flipped_faces + q.folded_faces, 0u);
 }
 
 TEST(Simplify, deterministic) {

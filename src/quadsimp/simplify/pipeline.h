@@ -38,7 +38,9 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
 //! the remaining collapses, or that the target is above the quads the input converts to.
 //! Holes, a kept border and the valence cap can leave a mesh above any target, and a user
 //! asking for 50 quads must not take 568 for a bug; nor one asking for automatic halting
-//! take a noisy scan left at 18,761 of 19,911 quads for the fitmaps' verdict.
+//! take a noisy scan left at 18,761 of 19,911 quads for the fitmaps' verdict. A mesh of
+//! several pieces that some could not shrink to their share of the target says so, and
+//! how many quads they hold.
 std::string target_shortfall(const SimplifyReport& report, Index target_faces);
 
 //! "" when every quad of a result is convex, unfolded and, with a reference surface

@@ -168,6 +168,15 @@ class Simplifier {
   double mu_ = 0;  // the mean edge of the whole mesh: search radii
   std::vector<Index> component_;     // per vertex
   std::vector<double> component_mu_;  // per component
+  // With a target and several components: each one's share of the target (by area) and
+  // its faces, counted by after_change(); empty otherwise.
+  std::vector<double> share_;
+  std::vector<Index> piece_faces_;
+  Index counted_faces_ = 0;  // m_.n_faces() when piece_faces_ was last brought up to date
+  bool at_share(Index v) const {
+    return !share_.empty() && double(piece_faces_[component_[v]]) <= share_[component_[v]];
+  }
+  void share_target();
   std::vector<std::uint32_t> version_, face_mark_, vertex_mark_;
   // Reference normal under each vertex (at its last projection): faces are checked
   // against these, so that no sequence of small turns can flip a face.

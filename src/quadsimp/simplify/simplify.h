@@ -16,7 +16,10 @@ struct Fitmaps {
 };
 
 struct SimplifyOptions {
-  //! Stop when the mesh has at most this many faces (0: no count limit).
+  //! Stop when the mesh has at most this many faces (0: no count limit). A mesh of several
+  //! pieces (connected components) shares the target among them by area: each piece stops
+  //! at its share, so that pieces which cannot shrink to theirs (scan debris) do not take
+  //! quads from the others; the run then ends above the target (SimplifyReport::pieces).
   Index target_faces = 0;
   //! Adaptive mode: collapse priority |d| * F_S, collapses limited by F_M; needs fitmaps.
   bool adaptive = false;
@@ -135,6 +138,9 @@ struct SimplifyReport {
   //! Automatic halting: the halting count predicted from the fitmaps before the run
   //! (0 otherwise, or with nothing to go by).
   double predicted_faces = 0;
+  //! With a target and several pieces (see SimplifyOptions::target_faces): the pieces,
+  //! those left above their share of the target, and the faces those hold.
+  Index pieces = 0, pieces_above_share = 0, faces_above_share = 0;
   Index refused() const { return refused_topology + refused_valence + refused_geometry + refused_fitmap; }
   bool cancelled = false;
   double seconds = 0;
