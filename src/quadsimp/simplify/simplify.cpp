@@ -251,8 +251,8 @@ double Simplifier::blocked_share() {
   return area_ > 0 ? sum / area_ : 0.0;
 }
 
-// A piece that cannot shrink to its share of the target (a speck of scan debris keeps its
-// one to five quads whatever the target) was paid for by the others: bunny.ply with 300
+// A piece that cannot shrink to its share of the target (a speck of scan debris keeps one
+// to eight quads whatever the target) was paid for by the others: bunny.ply with 300
 // flakes of twelve triangles beside it, asked for 1,000 quads, came out as a bunny of 36
 // quads beside 964 quads of flakes, and nothing said why. Each piece now stops at its
 // share by area, as quads of one size would share it, and the run ends above the target
