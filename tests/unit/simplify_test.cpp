@@ -436,11 +436,28 @@ TEST(Simplify, two_components_both_survive) {
   EXPECT_EQ(count_components(c.quads), 2u);
 }
 
-// Faces of the output whose centroid lies beyond x.
+// Faces of the output whose centroid lies beyond x, or below it.
 Index faces_beyond(const QuadMesh& q, double x) {
   Index n = 0;
   for (Index f = 0; f < q.face_capacity(); ++f) n += q.is_face_live(f) && q.face_centroid(f).x() > x;
   return n;
+}
+Index faces_below(const QuadMesh& q, double x) { return q.n_faces() - faces_beyond(q, x); }
+
+// Scan debris: n flakes (fans of 12 triangles, 0.02 across, a little bumpy) in rows of
+// ten from x = x0, beside whatever t holds.
+void add_flakes(TriMesh& t, int n, double x0) {
+  for (int i = 0; i < n; ++i) {
+    TriMesh flake;
+    const Vec3 centre(x0 + 0.1 * (i % 10), 0.1 * (i / 10), 0.0);
+    flake.positions.push_back(centre);
+    for (int k = 0; k < 12; ++k) {
+      const double a = 2 * M_PI * k / 12;
+      flake.positions.push_back(centre + 0.01 * Vec3(std::cos(a), std::sin(a), 0.001 * (k % 3)));
+      flake.faces.push_back({0, Index(1 + k), Index(1 + (k + 1) % 12)});
+    }
+    append(t, flake);
+  }
 }
 
 TEST(Simplify, a_small_component_takes_its_fewest_quads_and_the_large_one_its_share) {
@@ -478,17 +495,7 @@ TEST(Simplify, pieces_that_cannot_shrink_do_not_take_the_quads_of_the_others) {
   // 1,000 quads kept 36. The sphere keeps its share by area, and the log says why the
   // run ends above the target.
   TriMesh t = tri_sphere(30, 40);
-  for (int i = 0; i < 100; ++i) {
-    TriMesh flake;
-    const Vec3 centre(3.0 + 0.1 * (i % 10), 0.1 * (i / 10), 0.0);
-    flake.positions.push_back(centre);
-    for (int k = 0; k < 12; ++k) {
-      const double a = 2 * M_PI * k / 12;
-      flake.positions.push_back(centre + 0.01 * Vec3(std::cos(a), std::sin(a), 0.001 * (k % 3)));
-      flake.faces.push_back({0, Index(1 + k), Index(1 + (k + 1) % 12)});
-    }
-    append(t, flake);
-  }
+  add_flakes(t, 100, 3.0);
   Case c = prepare(std::move(t));
   const ReferenceSurface ref(c.tri);
   SimplifyOptions opt;
@@ -508,6 +515,29 @@ TEST(Simplify, pieces_that_cannot_shrink_do_not_take_the_quads_of_the_others) {
   EXPECT_NE(why.find("Remove Isolated pieces"), std::string::npos) << why;
   const QuadQuality q = quad_quality(c.quads, &ref);
   EXPECT_EQ(q.flipped_faces + q.folded_faces, 0u);
+}
+
+TEST(Simplify, a_coarse_piece_leaves_the_share_it_cannot_use_to_the_others) {
+  // Two spheres of one size, one meshed coarsely (176 quads) and one finely, and debris
+  // that holds the run above the target. By area the spheres' shares of 600 are about 300
+  // each; the coarse one keeps its 176, and the fine one gets what is left, about 424.
+  TriMesh t = tri_sphere(12, 16);
+  TriMesh fine = tri_sphere(40, 60);
+  for (auto& p : fine.positions) p.x() += 3;
+  append(t, fine);
+  add_flakes(t, 50, 6.0);
+  Case c = prepare(std::move(t));
+  const ReferenceSurface ref(c.tri);
+  const Index coarse_faces = faces_below(c.quads, 1.5);
+  SimplifyOptions opt;
+  opt.target_faces = 600;
+  opt.check_invariants = true;
+  const SimplifyReport r = simplify(c.quads, ref, opt);
+  EXPECT_EQ(faces_below(c.quads, 1.5), coarse_faces);
+  const Index fine_faces = c.quads.n_faces() - faces_below(c.quads, 1.5) - faces_beyond(c.quads, 5.0);
+  EXPECT_GE(fine_faces, 600 - coarse_faces - 10);
+  EXPECT_LE(fine_faces, 600 - coarse_faces);
+  EXPECT_EQ(r.pieces_above_share, 50u);  // the flakes
 }
 
 TEST(Simplify, deterministic) {

@@ -268,10 +268,26 @@ void Simplifier::share_target() {
       area[c] += 0.5 * m_.face_area_normal(f).norm();
       ++piece_faces_[c];
     }
-  double total = 0;
-  for (double a : area) total += a;
+  // A piece with fewer faces than its share keeps them, and the others share what is left
+  // by area. The target alone hands them that surplus only while it is the count that
+  // stops the run: beside debris that holds it above the target, each piece stops at its
+  // share, and a coarse piece's unused share would be lost to the others.
+  std::vector<char> kept(pieces, 0);
+  double left = 0, open_area = 0;
+  for (bool more = true; more;) {
+    more = false;
+    left = double(opt_.target_faces), open_area = 0;
+    for (Index c = 0; c < pieces; ++c) {
+      if (kept[c]) left -= double(piece_faces_[c]);
+      else open_area += area[c];
+    }
+    for (Index c = 0; c < pieces; ++c)
+      if (!kept[c] && double(piece_faces_[c]) <= (open_area > 0 ? left * area[c] / open_area : 0.0))
+        kept[c] = 1, more = true;
+  }
   share_.resize(pieces);
-  for (Index c = 0; c < pieces; ++c) share_[c] = total > 0 ? double(opt_.target_faces) * area[c] / total : 0.0;
+  for (Index c = 0; c < pieces; ++c)
+    share_[c] = kept[c] ? double(piece_faces_[c]) : open_area > 0 ? left * area[c] / open_area : 0.0;
   counted_faces_ = m_.n_faces();
   rep_.pieces = pieces;
 }

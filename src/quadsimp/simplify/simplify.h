@@ -17,9 +17,10 @@ struct Fitmaps {
 
 struct SimplifyOptions {
   //! Stop when the mesh has at most this many faces (0: no count limit). A mesh of several
-  //! pieces (connected components) shares the target among them by area: each piece stops
-  //! at its share, so that pieces which cannot shrink to theirs (scan debris) do not take
-  //! quads from the others; the run then ends above the target (SimplifyReport::pieces).
+  //! pieces (connected components) shares the target among them by area (a piece with
+  //! fewer faces than its share keeps them, and the others share the rest): each piece
+  //! stops at its share, so that pieces which cannot shrink to theirs (scan debris) do not
+  //! take quads from the others; the run then ends above the target (SimplifyReport::pieces).
   Index target_faces = 0;
   //! Adaptive mode: collapse priority |d| * F_S, collapses limited by F_M; needs fitmaps.
   bool adaptive = false;
