@@ -1078,8 +1078,11 @@ TEST(Metrics, closed_pieces_of_two_quads_are_counted_and_named) {
       positions.push_back(0.05 * c + Vec3(0.5 + piece, 0.5, 1));
     quads.push_back({o, o + 1, o + 2, o + 3});
     quads.push_back({o + 3, o + 2, o + 1, o});
-    const QuadQuality q = quad_quality(QuadMesh::from_faces(positions, quads));
+    const QuadMesh m = QuadMesh::from_faces(positions, quads);
+    const QuadQuality q = quad_quality(m);
     EXPECT_EQ(q.two_quad_pieces, Index(piece + 1));
+    // Their diagonals are shared by nature, not by an operator (check_invariants() counts them).
+    EXPECT_EQ(count_shared_diagonals(m), 0u);
     EXPECT_EQ(q.folded_faces, Index(2 * (piece + 1)));
     const std::string pieces = piece == 0 ? "; 1 closed piece is two quads on the same four corners, "
                                           : "; 2 closed pieces are two quads on the same four corners, ";

@@ -279,10 +279,20 @@ bool share_a_face(const QuadMesh& m, Index p, Index q, Index skip_a, Index skip_
   return shared;
 }
 
+Index two_quad_piece_partner(const QuadMesh& m, Index f) {
+  const Index t0 = m.twin(QuadMesh::halfedge(f, 0));
+  if (t0 == kNone) return kNone;
+  for (Index k = 1; k < 4; ++k) {
+    const Index t = m.twin(QuadMesh::halfedge(f, k));
+    if (t == kNone || QuadMesh::face(t) != QuadMesh::face(t0)) return kNone;
+  }
+  return QuadMesh::face(t0);
+}
+
 Index count_shared_diagonals(const QuadMesh& m) {
   Index n = 0;
   for (Index f = 0; f < m.face_capacity(); ++f)
-    if (m.is_face_live(f))
+    if (m.is_face_live(f) && two_quad_piece_partner(m, f) == kNone)
       for (Index k = 0; k < 2; ++k) n += share_a_face(m, m.vertex(f, k), m.vertex(f, k + 2), f);
   return n;
 }

@@ -143,10 +143,16 @@ void validate(const QuadMesh& mesh);
 //! Whether p and q are corners of one face other than the faces skip_a and skip_b.
 bool share_a_face(const QuadMesh& mesh, Index p, Index q, Index skip_a = kNone, Index skip_b = kNone);
 
+//! The other face of f's piece when that piece is f and one other face on the same four
+//! corners (sharing all four edges: what a tetrahedron converts to, the least a closed
+//! quad mesh has), else kNone.
+Index two_quad_piece_partner(const QuadMesh& mesh, Index f);
+
 //! The number of face diagonals whose two corners also share another face. Such quads
 //! touch at two corners without the edge between them; split into triangles along that
 //! diagonal, as vcglib's importers did with one such pair, they make an edge of four
 //! triangles. validate() accepts them, but the operators never make one: 0 expected.
+//! Two-quad pieces (two_quad_piece_partner()) share theirs by nature and are not counted.
 Index count_shared_diagonals(const QuadMesh& mesh);
 
 //! For each face (by id; dead faces get 0), the diagonal along which to split it into two

@@ -122,15 +122,8 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
     }
     q.nonconvex_faces += !quad_is_convex(p[0], p[1], p[2], p[3]);
     q.folded_faces += quad_folds(p[0], p[1], p[2], p[3]);
-    // A piece of f and one other face alone shares all four edges with it (counted at the
-    // lower of the two).
-    const Index t0 = m.twin(QuadMesh::halfedge(f, 0));
-    bool two_quads = t0 != kNone && QuadMesh::face(t0) > f;
-    for (Index k = 1; k < 4 && two_quads; ++k) {
-      const Index t = m.twin(QuadMesh::halfedge(f, k));
-      two_quads = t != kNone && QuadMesh::face(t) == QuadMesh::face(t0);
-    }
-    q.two_quad_pieces += two_quads;
+    const Index partner = two_quad_piece_partner(m, f);
+    q.two_quad_pieces += partner != kNone && partner > f;  // counted at the lower of the two
     if (ref) {
       const Vec3 n = quad_normal(p[0], p[1], p[2], p[3]);
       const SurfacePoint s = ref->closest_to_quad_centre(p);
