@@ -87,6 +87,32 @@ def test_a_target_the_mesh_cannot_reach_is_logged(capfd):
     assert "the target of 100000 quads is above the " in capfd.readouterr().err
 
 
+def test_debris_keeps_its_quads_and_the_surface_its_share(capfd):
+    # Specks of debris beside a surface cannot shrink to their share of the target: the
+    # surface keeps its own share by area, and the log says why the result is above the target.
+    grid = open_grid(40)
+    v, f = list(grid.vertex_matrix()), list(grid.face_matrix())
+    for i in range(30):
+        c = np.array([2.0 + 0.1 * (i % 6), 0.1 * (i // 6), 0.0])
+        base = len(v)
+        v.append(c)
+        for k in range(8):
+            a = 2 * np.pi * k / 8
+            v.append(c + 0.01 * np.array([np.cos(a), np.sin(a), 0.001 * (k % 2)]))
+            f.append([base, base + 1 + k, base + 1 + (k + 1) % 8])
+    ms = pymeshlab.MeshSet(verbose=True)
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.array(v), face_matrix=np.array(f, dtype=np.int32)), "debris")
+    ms.meshing_quad_mesh_simplification(targetfacenum=100)
+    out = ms.current_mesh()
+    assert is_pure_quad(out)
+    centres = np.array([out.vertex_matrix()[list(map(int, p))].mean(axis=0) for p in out.polygonal_face_list()])
+    on_grid = int((centres[:, 0] < 1.5).sum())
+    assert 95 <= on_grid <= 100  # its share: over 99.9% of the area
+    err = capfd.readouterr().err
+    assert "above the target of 100: the mesh has 31 pieces" in err
+    assert "Remove Isolated pieces" in err
+
+
 def test_automatic_halting_that_runs_out_of_collapses_is_logged(capfd):
     # A small grid whose border is kept runs out of collapses before the M-fitmap blocks
     # its share of the surface: the log says where it stopped and what refused.
