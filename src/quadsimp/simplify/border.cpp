@@ -90,7 +90,7 @@ void Simplifier::coarsen_border() {
   border_candidates_.resize(kept);
   std::sort(border_verts_.begin(), border_verts_.end());
   for (Index b : border_verts_)
-    if (m_.is_vertex_live(b) && m_.is_border_vertex(b) && !at_share(b)) remove_border_vertex(b);
+    if (m_.is_vertex_live(b) && m_.is_border_vertex(b) && piece_room(b) > 0) remove_border_vertex(b);
 }
 
 // Where border vertices a and c merge: at a border corner if one of them is one (false

@@ -47,10 +47,7 @@ bool Simplifier::collapse_chords() {
     if (m_.n_faces() <= target) break;
     if (!m_.is_face_live(QuadMesh::face(c.h)) || !gather_chord(m_, c.h, chord_, kChordFaces)) continue;
     if (2 * (m_.n_faces() - target) <= Index(chord_.faces.size())) continue;
-    if (!share_.empty()) {  // and within its piece's share (share_target())
-      const Index piece = component_[chord_.left[0]];
-      if (2 * (double(piece_faces_[piece]) - share_[piece]) <= double(chord_.faces.size())) continue;
-    }
+    if (2 * piece_room(chord_.left[0]) <= double(chord_.faces.size())) continue;
     bool changed = false;
     for (Index f : chord_.faces) changed = changed || seen[f];
     if (changed || !try_collapse_chord(chord_)) continue;

@@ -168,15 +168,18 @@ class Simplifier {
   double mu_ = 0;  // the mean edge of the whole mesh: search radii
   std::vector<Index> component_;     // per vertex
   std::vector<double> component_mu_;  // per component
-  // With a target and several components: each one's share of the target (by area) and
-  // its faces, counted by after_change(); empty otherwise.
-  std::vector<double> share_;
+  // Per component, its faces, counted by after_change(), and with a target and several
+  // components its share of the target (share_target(); empty otherwise).
   std::vector<Index> piece_faces_;
-  Index counted_faces_ = 0;  // m_.n_faces() when piece_faces_ was last brought up to date
-  bool at_share(Index v) const {
-    return !share_.empty() && double(piece_faces_[component_[v]]) <= share_[component_[v]];
+  std::vector<double> share_;
+  Index counted_faces_ = 0;  // m_.n_faces() at the last count: what an operation removed
+  // The faces the piece of v may still lose before it is down to its share (unbounded
+  // without shares): the loop, border coarsening and chords each stop a piece there.
+  double piece_room(Index v) const {
+    return share_.empty() ? std::numeric_limits<double>::infinity()
+                          : double(piece_faces_[component_[v]]) - share_[component_[v]];
   }
-  void share_target();
+  void share_target(const std::vector<double>& piece_area);
   std::vector<std::uint32_t> version_, face_mark_, vertex_mark_;
   // Reference normal under each vertex (at its last projection): faces are checked
   // against these, so that no sequence of small turns can flip a face.

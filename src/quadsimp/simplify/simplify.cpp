@@ -257,17 +257,9 @@ double Simplifier::blocked_share() {
 // quads beside 964 quads of flakes, and nothing said why. Each piece now stops at its
 // share by area, as quads of one size would share it, and the run ends above the target
 // (target_shortfall() says why; bench/RESULTS.md, "Pieces share the target").
-void Simplifier::share_target() {
-  const Index pieces = Index(component_mu_.size());
+void Simplifier::share_target(const std::vector<double>& area) {
+  const Index pieces = Index(area.size());
   if (opt_.target_faces == 0 || pieces < 2) return;
-  std::vector<double> area(pieces, 0.0);
-  piece_faces_.assign(pieces, 0);
-  for (Index f = 0; f < m_.face_capacity(); ++f)
-    if (m_.is_face_live(f)) {
-      const Index c = component_[m_.vertex(f, 0)];
-      area[c] += 0.5 * m_.face_area_normal(f).norm();
-      ++piece_faces_[c];
-    }
   // A piece with fewer faces than its share keeps them, and the others share what is left
   // by area. The target alone hands them that surplus only while it is the count that
   // stops the run: beside debris that holds it above the target, each piece stops at its
@@ -288,7 +280,6 @@ void Simplifier::share_target() {
   share_.resize(pieces);
   for (Index c = 0; c < pieces; ++c)
     share_[c] = kept[c] ? double(piece_faces_[c]) : open_area > 0 ? left * area[c] / open_area : 0.0;
-  counted_faces_ = m_.n_faces();
   rep_.pieces = pieces;
 }
 
@@ -413,9 +404,16 @@ SimplifyReport Simplifier::run() {
     smooth_region(opt_.initial_sweeps);
     update_mu();
   }
+  std::vector<double> piece_area(component_mu_.size(), 0.0);
+  piece_faces_.assign(component_mu_.size(), 0);
   for (Index f = 0; f < m_.face_capacity(); ++f)
-    if (m_.is_face_live(f)) area_ += 0.5 * m_.face_area_normal(f).norm();
-  share_target();
+    if (m_.is_face_live(f)) {
+      const double area = 0.5 * m_.face_area_normal(f).norm();
+      const Index c = component_[m_.vertex(f, 0)];
+      area_ += area, piece_area[c] += area, ++piece_faces_[c];
+    }
+  counted_faces_ = m_.n_faces();
+  share_target(piece_area);
   rebuild_heap();
 
   const Index target = opt_.target_faces;
@@ -450,7 +448,7 @@ SimplifyReport Simplifier::run() {
       const Entry e = heap_.back();
       heap_.pop_back();
       if (!m_.is_face_live(e.face) || e.version != version_[e.face]) continue;
-      if (at_share(m_.vertex(e.face, 0))) continue;  // its piece is done (share_target())
+      if (piece_room(m_.vertex(e.face, 0)) <= 0) continue;  // its piece has its share (share_target())
       Vec3 pos;
       SurfacePoint foot;
       // A refused face comes back only when something around it changes.
