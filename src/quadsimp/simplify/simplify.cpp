@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -263,19 +264,20 @@ void Simplifier::share_target(const std::vector<double>& area) {
   // A piece with fewer faces than its share keeps them, and the others share what is left
   // by area. The target alone hands them that surplus only while it is the count that
   // stops the run: beside debris that holds it above the target, each piece stops at its
-  // share, and a coarse piece's unused share would be lost to the others.
+  // share, and a coarse piece's unused share would be lost to the others. The pieces kept
+  // are the sparsest (fewest faces per area): one pass in that order, however many pieces.
+  std::vector<Index> order(pieces);
+  std::iota(order.begin(), order.end(), Index(0));
+  std::sort(order.begin(), order.end(), [&](Index x, Index y) {
+    const double fx = double(piece_faces_[x]) * area[y], fy = double(piece_faces_[y]) * area[x];
+    return fx != fy ? fx < fy : x < y;
+  });
+  double left = double(opt_.target_faces), open_area = 0;
+  for (double a : area) open_area += a;
   std::vector<char> kept(pieces, 0);
-  double left = 0, open_area = 0;
-  for (bool more = true; more;) {
-    more = false;
-    left = double(opt_.target_faces), open_area = 0;
-    for (Index c = 0; c < pieces; ++c) {
-      if (kept[c]) left -= double(piece_faces_[c]);
-      else open_area += area[c];
-    }
-    for (Index c = 0; c < pieces; ++c)
-      if (!kept[c] && double(piece_faces_[c]) <= (open_area > 0 ? left * area[c] / open_area : 0.0))
-        kept[c] = 1, more = true;
+  for (Index c : order) {
+    if (!(double(piece_faces_[c]) * open_area <= left * area[c])) break;  // more faces than its share
+    kept[c] = 1, left -= double(piece_faces_[c]), open_area -= area[c];
   }
   share_.resize(pieces);
   for (Index c = 0; c < pieces; ++c)
