@@ -64,13 +64,12 @@ std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
     return "automatic halting stopped at " + n(r.faces) + " quads (the input converts to " + n(r.initial_faces) +
            ") before the M-fitmap blocked its share of the surface: " + refusals();
   if (target_faces == 0 || r.faces <= target_faces || r.cancelled) return {};
-  if (r.pieces_above_share > 0)
-    return "stopped at " + n(r.faces) + " quads, above the target of " + n(target_faces) + ": the mesh has " +
-           n(r.pieces) + " pieces, each stopping at its share of the target by area, and " +
-           n(r.pieces_above_share) + " of them could not shrink to theirs (they hold " + n(r.faces_above_share) +
-           " quads; if they are scan debris, remove small isolated pieces first, MeshLab: \"Remove Isolated "
-           "pieces\"): there, " + refusals();
-  return "stopped at " + n(r.faces) + " quads, above the target of " + n(target_faces) + ": " + refusals();
+  const std::string above = "stopped at " + n(r.faces) + " quads, above the target of " + n(target_faces) + ": ";
+  if (r.pieces_above_share == 0) return above + refusals();
+  return above + "the mesh has " + n(r.pieces) + " pieces, each stopping at its share of the target by area, and " +
+         n(r.pieces_above_share) + " of them could not shrink to theirs (they hold " + n(r.faces_above_share) +
+         " quads; if they are scan debris, remove small isolated pieces first, MeshLab: \"Remove Isolated "
+         "pieces\"): there, " + refusals();
 }
 
 std::string defects_note(const QuadQuality& q) {
