@@ -8,8 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <unordered_map>
+#include <utility>
 
+#include "quadsimp/fitmap/cells.h"
 #include "quadsimp/util/errors.h"
 
 namespace qs {
@@ -186,41 +187,26 @@ struct CellLevel {
 
 CellLevel build_cells(const TriMesh& t, const std::vector<Moments>& tm,
                       const std::vector<std::array<Index, 3>>& tri_adj, double size) {
+  std::vector<Vec3> centroid(t.n_faces());
+  for (Index f = 0; f < t.n_faces(); ++f)
+    centroid[f] = tm[f].area > 0 ? Vec3(tm[f].first / tm[f].area)
+                                 : Vec3((t.positions[t.faces[f][0]] + t.positions[t.faces[f][1]] +
+                                         t.positions[t.faces[f][2]]) / 3.0);
+  detail::CellGrid grid = detail::cluster_triangles(centroid, tri_adj, size);
   CellLevel L;
-  L.cell_of_triangle.resize(t.n_faces());
-  std::unordered_map<std::uint64_t, Index> id;
-  id.reserve(t.n_faces() / 2 + 16);
-  for (Index f = 0; f < t.n_faces(); ++f) {
-    const Vec3 c = tm[f].area > 0 ? Vec3(tm[f].first / tm[f].area)
-                                  : Vec3((t.positions[t.faces[f][0]] + t.positions[t.faces[f][1]] +
-                                          t.positions[t.faces[f][2]]) / 3.0);
-    const auto q = [&](double x) { return std::uint64_t(std::int64_t(std::floor(x / size)) & 0x1fffff); };
-    const std::uint64_t key = (q(c.x()) << 42) | (q(c.y()) << 21) | q(c.z());
-    auto [it, fresh] = id.emplace(key, Index(L.moments.size()));
-    if (fresh) L.moments.emplace_back();
-    L.moments[it->second].add(tm[f]);
-    L.cell_of_triangle[f] = it->second;
-  }
-  const Index nc = Index(L.moments.size());
+  const Index nc = grid.n_cells();
+  L.moments.resize(nc);
+  for (Index f = 0; f < t.n_faces(); ++f) L.moments[grid.cell_of_triangle[f]].add(tm[f]);
   L.centre.resize(nc);
   L.against.assign(nc, 0.0);
   for (Index c = 0; c < nc; ++c) L.centre[c] = L.moments[c].first / std::max(L.moments[c].area, 1e-300);
   for (Index f = 0; f < t.n_faces(); ++f) {
-    const Index c = L.cell_of_triangle[f];
+    const Index c = grid.cell_of_triangle[f];
     if (tm[f].normal.dot(L.moments[c].normal) <= 0) L.against[c] += tm[f].area;
   }
-  std::vector<std::pair<Index, Index>> pairs;
-  for (Index f = 0; f < t.n_faces(); ++f)
-    for (Index g : tri_adj[f])
-      if (g != kNone && L.cell_of_triangle[f] != L.cell_of_triangle[g])
-        pairs.push_back({L.cell_of_triangle[f], L.cell_of_triangle[g]});
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  L.adj_start.assign(nc + 1, 0);
-  for (auto& pr : pairs) ++L.adj_start[pr.first + 1];
-  std::partial_sum(L.adj_start.begin(), L.adj_start.end(), L.adj_start.begin());
-  L.adj.resize(pairs.size());
-  for (std::size_t i = 0; i < pairs.size(); ++i) L.adj[i] = pairs[i].second;
+  L.adj_start = std::move(grid.adj_start);
+  L.adj = std::move(grid.adj);
+  L.cell_of_triangle = std::move(grid.cell_of_triangle);
   return L;
 }
 
