@@ -97,6 +97,7 @@ SimplifyParams simplify_params_of(const ParameterList& params) {
   p.target_faces = p.adaptive && p.auto_halt ? 0 : Index(std::max(0, params.getInt("TargetFaceNum")));
   p.halt_share = params.getFloat("HaltShare");
   p.tau = params.getFloat("Tau");
+  p.max_aspect = params.getFloat("MaxAspect");
   p.preserve_boundary = params.getBool("PreserveBoundary");
   p.fast = params.getBool("Fast");
   p.fit_to_input = params.getBool("FitToInput");

@@ -114,6 +114,7 @@ int run_simplify(const SimplifyArgs& a) {
   params.tau = a.tau;
   params.m_factor = a.m_factor;
   params.halt_share = a.halt_share;
+  params.max_aspect = a.max_aspect;
   params.preserve_boundary = a.preserve_boundary;
   params.fast = a.fast;
   params.fit_to_input = a.fit_to_input;

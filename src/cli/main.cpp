@@ -63,6 +63,10 @@ int main(int argc, char** argv) {
                 "auto-halt: share of the surface the M-fitmap may block before stopping (1: until no feasible collapse remains, the paper's rule)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  s->add_option("--max-aspect", simp.max_aspect,
+                "adaptive: how much longer than wide quads may grow along the flatter direction (1: square quads, the paper's)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 100.0));
   s->add_flag("--preserve-boundary", simp.preserve_boundary, "keep the border exactly as it is");
   s->add_flag("--fast", simp.fast, "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");
   s->add_flag("--fit-to-input", simp.fit_to_input,

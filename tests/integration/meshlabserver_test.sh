@@ -131,6 +131,30 @@ PY
   fi
 fi
 
+# 3b''. Square quads from a script (MaxAspect 1): where the CLI's --max-aspect 1 stops, not
+#       where the default does.
+if [ -f "$work/adaptive.json" ]; then
+  sed 's/name="MaxAspect" type="RichFloat" value="[0-9.]*"/name="MaxAspect" type="RichFloat" value="1"/' \
+    "$work/adaptive.mlx" >"$work/square.mlx"
+  if ! grep -q 'name="MaxAspect" type="RichFloat" value="1"' "$work/square.mlx"; then
+    fail "square: no MaxAspect in the script"
+  elif ! server -i "$bunny" -o "$work/square.ply" -m ff -s "$work/square.mlx" ||
+       ! "$cli" stats "$bunny" "$work/square.ply" --json --samples 50000 >"$work/square.json"; then
+    fail "square script failed on the bunny"; cat "$work/server.log"
+  else
+    "$cli" simplify "$bunny" "$work/cli_square.ply" -q --adaptive --auto-halt --max-aspect 1 >/dev/null
+    "$cli" stats "$bunny" "$work/cli_square.ply" --json --samples 50000 >"$work/cli_square.json"
+    python3 - "$work/cli_square.json" "$work/square.json" "$work/adaptive.json" <<'PY' || fail "square: plugin and CLI differ"
+import json, sys
+a, b, default = (json.load(open(p)) for p in sys.argv[1:4])
+for k in ("faces", "vertices", "max_valence", "regular_percent"):
+    assert a[k] == b[k], (k, a[k], b[k])
+assert (b["faces"], b["rms_e3"]) != (default["faces"], default["rms_e3"]), "MaxAspect 1 changed nothing"
+print("ok: largest aspect 1: plugin and CLI stop at", b["faces"], "quads, against", default["faces"])
+PY
+  fi
+fi
+
 # 3c. The fit to the input from a script: the same as the CLI's, and closer than without.
 if script_and_cli fit "FitToInput" --faces 3000 --fit-to-input; then
   python3 - "$work/cli_fit.json" "$work/fit.json" "$work/cli.json" <<'PY' || fail "fit: plugin and CLI differ"

@@ -445,6 +445,17 @@ def test_adaptive_automatic_halting_stops_where_the_cli_does(bunny_path, cli, tm
     assert early["faces"] > q["faces"]
 
 
+def test_largest_aspect_reaches_the_loop_as_the_clis_does(bunny_path, cli, tmp_path):
+    # Quads stretched along the flatter direction (the default, 3) against square ones (1):
+    # each the CLI's result with the same setting, and the stretched ones closer to the input.
+    stretched, _ = plugin_and_cli(bunny_path, cli, tmp_path, {"adaptive": True, "targetfacenum": 1000},
+                                  ["--adaptive", "--faces", "1000"])
+    square, stats = plugin_and_cli(bunny_path, cli, tmp_path, {"adaptive": True, "targetfacenum": 1000, "maxaspect": 1.0},
+                                   ["--adaptive", "--faces", "1000", "--max-aspect", "1"])
+    assert square["rms_e3"] == pytest.approx(stats["rms_e3"], rel=0.01)
+    assert stretched["rms_e3"] < 0.97 * square["rms_e3"]
+
+
 def test_bad_input_raises_a_python_exception():
     # Last in the file: once a filter has raised, pymeshlab 2025.7 can print no filter log
     # (verbose) for the rest of the process, MeshLab's own filters' alike (seen in plain

@@ -7,12 +7,14 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <iostream>
 #include <random>
 
 #include <tbb/task_arena.h>
 
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/tri_to_quad.h"
+#include "quadsimp/fitmap/anisotropy.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/mesh/clean.h"
 #include "quadsimp/metrics/metrics.h"
@@ -90,6 +92,14 @@ SimplifyReport simplify_adaptive(const TriMesh& t, QuadMesh& q, Index target = 0
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
+}
+
+// d^T G d / |d|^2 for the metric a stores at vertex v.
+double metric_along(const Anisotropy& a, Index v, const Vec3& d) {
+  const auto& g = a.g;
+  const Vec3 u = d.normalized();
+  return g[0][v] * u.x() * u.x() + g[3][v] * u.y() * u.y() + g[5][v] * u.z() * u.z() +
+         2 * (g[1][v] * u.x() * u.y() + g[2][v] * u.x() * u.z() + g[4][v] * u.y() * u.z());
 }
 
 }  // namespace
@@ -527,4 +537,85 @@ TEST(Adaptive, keys_take_f_s_over_the_face_so_fine_noise_does_not_scatter_sizes)
   const double spread = std::sqrt(std::max(0.0, sum2 / n - mean * mean)) / mean;
   EXPECT_LT(spread, 0.31);
   EXPECT_GT(quad_quality(q).regular_percent, 76.0);
+}
+
+TEST(Anisotropy, a_plane_keeps_square_quads) {
+  TriMesh t = tri_grid(20, 20);
+  clean(t);
+  const Anisotropy a = compute_anisotropy(t, 0.2, 3.0);
+  for (Index v = 0; v < t.n_vertices(); ++v)
+    for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}) ASSERT_NEAR(metric_along(a, v, d), 1.0, 1e-6);
+}
+
+TEST(Anisotropy, a_cylinder_stretches_along_its_axis_up_to_the_bound) {
+  // Bent across x only: k2 = 0, so the stretch is the bound; the axis (y) is the long side.
+  const TriMesh t = height_field(60, 0.4, [](double x, double) { return std::sqrt(1.0 - x * x); });
+  const Anisotropy a = compute_anisotropy(t, 0.1, 3.0);
+  const Index c = centre_vertex(t);
+  EXPECT_NEAR(metric_along(a, c, Vec3(0, 1, 0)), 1 / 3.0, 1e-3);
+  EXPECT_NEAR(metric_along(a, c, Vec3(1, 0, 0)), 3.0, 1e-2);
+  // Areas are kept: the two sides' factors multiply to one.
+  const Anisotropy b = compute_anisotropy(t, 0.1, 2.0);
+  EXPECT_NEAR(metric_along(b, c, Vec3(0, 1, 0)) * metric_along(b, c, Vec3(1, 0, 0)), 1.0, 1e-2);
+}
+
+TEST(Anisotropy, a_torus_gets_the_aspect_of_its_curvatures_and_a_sphere_none) {
+  // On the torus's outer equator k1 = 1/r around the tube and k2 = 1/(R + r) along it:
+  // the stretch is sqrt(k1 / k2) = sqrt((R + r) / r), 2.08 for R = 1, r = 0.3.
+  const double R = 1, r = 0.3;
+  const TriMesh torus = tri_torus(240, 80, R, r);
+  const Anisotropy a = compute_anisotropy(torus, 0.1, 3.0);
+  const Index outer = 0;  // (R + r, 0, 0)
+  ASSERT_NEAR(torus.positions[outer].x(), R + r, 1e-12);
+  const double stretch = std::sqrt((R + r) / r);
+  EXPECT_NEAR(metric_along(a, outer, Vec3(0, 0, 1)), stretch, 0.1 * stretch);  // around the tube
+  EXPECT_NEAR(metric_along(a, outer, Vec3(0, 1, 0)), 1 / stretch, 0.1 / stretch);  // along it
+  const TriMesh sphere = tri_sphere(60, 90);
+  const Anisotropy s = compute_anisotropy(sphere, 0.3, 3.0);
+  double most = 1;
+  for (Index v = 0; v < sphere.n_vertices(); ++v) {
+    const Vec3 p = sphere.positions[v];
+    if (std::abs(p.z()) > 0.8) continue;  // the poles' fans
+    const Vec3 east = Vec3(-p.y(), p.x(), 0).normalized(), north = p.cross(east).normalized();
+    most = std::max({most, metric_along(s, v, east), metric_along(s, v, north)});
+  }
+  EXPECT_LT(most, 1.1);
+}
+
+TEST(Adaptive, quads_grow_long_along_a_torus_and_come_out_closer) {
+  // At the same count, quads stretched along the tube (max_aspect 3) against square ones.
+  const TriMesh t = tri_torus(240, 80, 1.0, 0.3);
+  const ReferenceSurface ref(t);
+  const Fitmaps f = compute_fitmaps(t);
+  struct Result {
+    double along_over_around, rms, regular;
+  };
+  auto run = [&](double max_aspect) {
+    QuadMesh q = tri_to_quad(t);
+    SimplifyOptions opt = adaptive_options(f);
+    opt.target_faces = 300;
+    opt.refuse_folds = true;
+    opt.max_aspect = max_aspect;
+    simplify(q, ref, opt);
+    validate(q);
+    EXPECT_EQ(q.n_faces(), 300u);
+    double along = 0, around = 0;
+    for (Index fc = 0; fc < q.face_capacity(); ++fc) {
+      if (!q.is_face_live(fc)) continue;
+      for (Index k = 0; k < 4; ++k) {
+        const Vec3 a = q.position(q.vertex(fc, k)), b = q.position(q.vertex(fc, k + 1));
+        const Vec3 m = 0.5 * (a + b), ring = Vec3(-m.y(), m.x(), 0).normalized();
+        const double l = (b - a).norm(), c = std::abs((b - a).dot(ring)) / l;
+        (c > 0.7 ? along : around) += l;
+      }
+    }
+    return Result{along / around, surface_distance(q, ref, 100000).rms, quad_quality(q).regular_percent};
+  };
+  const Result square = run(1.0), stretched = run(3.0);
+  EXPECT_GT(stretched.along_over_around, 1.3 * square.along_over_around);
+  EXPECT_LT(stretched.rms, 0.9 * square.rms);
+  EXPECT_GT(stretched.regular, 70.0);
+  std::cout << "along/around " << square.along_over_around << " -> " << stretched.along_over_around << ", rms "
+            << square.rms << " -> " << stretched.rms << ", regular " << square.regular << " -> " << stretched.regular
+            << "\n";
 }

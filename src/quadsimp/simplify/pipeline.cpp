@@ -18,6 +18,7 @@ std::string check_params(const SimplifyParams& p) {
   if (!(p.tau > 0 && p.tau < 1)) return "tau must be between 0 and 1";
   if (!(p.m_factor > 0)) return "the M-fitmap factor must be positive";
   if (!(p.halt_share > 0 && p.halt_share <= 1)) return "the halting share must be in (0, 1]";
+  if (!(p.max_aspect >= 1)) return "the largest aspect must be at least 1";
   return {};
 }
 
@@ -40,6 +41,7 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
     opt.fitmaps = &fitmaps;
     opt.m_factor = p.m_factor;
     opt.halt_share = p.halt_share;
+    opt.max_aspect = p.max_aspect;
   }
   SimplifyReport r = simplify(in.quads, ref, opt);
   if (p.fit_to_input && !r.cancelled) {

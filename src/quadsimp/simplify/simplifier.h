@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "quadsimp/fitmap/anisotropy.h"
 #include "quadsimp/ops/chord_collapse.h"
 #include "quadsimp/ops/edge_rotation.h"
 #include "quadsimp/simplify/simplify.h"
@@ -95,6 +96,18 @@ class Simplifier {
     if (!opt_.adaptive) return;
     s_foot_[v] = clamped_s(ref_.interpolate(opt_.fitmaps->s, s));
     size_[v] = target_size(s_foot_[v]);
+    if (!anisotropy_.empty())
+      for (int k = 0; k < 6; ++k) metric_[v][k] = float(ref_.interpolate(anisotropy_.g[k], s));
+  }
+  // |d|^2 under the mean of u's and v's metrics, over |d|^2 (1 without anisotropy): a
+  // spring between them along d rests at rest_length() / sqrt of it.
+  double metric_ratio(Index u, Index v, const Vec3& d) const {
+    const auto form = [&](const std::array<float, 6>& g) {
+      return g[0] * d.x() * d.x() + g[3] * d.y() * d.y() + g[5] * d.z() * d.z() +
+             2 * (g[1] * d.x() * d.y() + g[2] * d.x() * d.z() + g[4] * d.y() * d.z());
+    };
+    const double l2 = d.squaredNorm();
+    return l2 > 0 ? 0.5 * (form(metric_[u]) + form(metric_[v])) / l2 : 1.0;
   }
   void update_mu();
   // The mean edge of v's connected component: what its springs and the thresholds
@@ -195,6 +208,9 @@ class Simplifier {
   // slower on the adaptive armadillo and bunny (five of seven alternated runs).
   std::vector<double> size_;
   double size_mean_ = 1;
+  // Adaptive mode with max_aspect > 1: the metric on M0, and under each vertex (record_foot()).
+  Anisotropy anisotropy_;
+  std::vector<std::array<float, 6>> metric_;
   std::vector<double> blocked_area_;  // blocked_share()'s per face, kept for its next measure
   double fine_above_ = std::numeric_limits<double>::infinity();  // the fine phase runs above this face count
   std::uint32_t stamp_ = 0;

@@ -79,10 +79,21 @@ double Simplifier::sample_fitmap(const std::vector<float>& field, const Vec3& p,
 
 // [paper 3.3] Priority |d| * F_S(phi(c)), c the face centre and phi the projection
 // onto M0 along the face normal, with F_S averaged over the face (s_weight()); uniform
-// mode: |d|. Appends both diagonals of f with the face's current version.
+// mode: |d|. With anisotropy |d| is measured in the metric under the face's four corners:
+// without it there, the springs alone stretched the quads and the RMS gain stayed where it
+// was (20.7% over the fixed counts; bench/RESULTS.md). Appends both diagonals of f with
+// the face's current version.
 void Simplifier::append_entries(Index f) {
   const double scale = opt_.adaptive ? s_weight(f) : 1.0;
-  for (Index k = 0; k < 2; ++k) heap_.push_back({float(norm_of_diagonal(m_, f, k) * scale), f, version_[f], k});
+  for (Index k = 0; k < 2; ++k) {
+    double length = norm_of_diagonal(m_, f, k);
+    if (!anisotropy_.empty()) {
+      const Vec3 d = m_.position(m_.vertex(f, k)) - m_.position(m_.vertex(f, k + 2));
+      length *= std::sqrt(0.5 * (metric_ratio(m_.vertex(f, k), m_.vertex(f, k + 2), d) +
+                                 metric_ratio(m_.vertex(f, k + 1), m_.vertex(f, k + 3), d)));
+    }
+    heap_.push_back({float(length * scale), f, version_[f], k});
+  }
 }
 
 void Simplifier::push_face(Index f) {
@@ -387,6 +398,16 @@ SimplifyReport Simplifier::run() {
       s_hi_ = std::min(double(sorted[std::size_t((1 - q) * (sorted.size() - 1))]), 2.0 * s_mid_);
     }
     s_foot_.assign(m_.vertex_capacity(), s_mid_);  // size 1 where a vertex has no foot
+    if (opt_.target_faces == 0) rep_.predicted_faces = predicted_halt();
+    const double count = opt_.target_faces > 0 ? double(opt_.target_faces) : rep_.predicted_faces;
+    if (opt_.max_aspect > 1 && count > 0) {
+      // The metric at the scale of the result's quads: twice the side of count squares.
+      const TriMesh& t = ref_.mesh();
+      double area = 0;
+      for (const auto& f : t.faces) area += triangle_area(t.positions[f[0]], t.positions[f[1]], t.positions[f[2]]);
+      anisotropy_ = compute_anisotropy(t, 2 * std::sqrt(area / count), opt_.max_aspect);
+      metric_.assign(m_.vertex_capacity(), {1.f, 0.f, 0.f, 1.f, 0.f, 1.f});  // where a vertex has no foot
+    }
   }
   for (Index v = 0; v < m_.vertex_capacity(); ++v)
     if (m_.is_vertex_live(v)) {
@@ -419,7 +440,6 @@ SimplifyReport Simplifier::run() {
   rebuild_heap();
 
   const Index target = opt_.target_faces;
-  if (target == 0 && opt_.adaptive) rep_.predicted_faces = predicted_halt();
   if (opt_.fine_phase > 0) {
     // Automatic halting has no target: the predicted count stands in for it, times a
     // margin. The predictions were at least 0.44 of the actual counts, so the last

@@ -1,0 +1,101 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/fitmap/anisotropy.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "quadsimp/fitmap/cells.h"
+
+namespace qs {
+namespace {
+
+// What a cell holds: its triangles' area, area-weighted centroid, normal sum and
+// second moment of the unit normals.
+struct NormalMoments {
+  double area = 0;
+  Vec3 first = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+};
+
+struct Scratch {
+  std::vector<Index> mark, queue;
+  Index stamp = 0;
+};
+
+}  // namespace
+
+Anisotropy compute_anisotropy(const TriMesh& t, double radius, double max_aspect) {
+  Anisotropy out;
+  const Index nv = t.n_vertices(), nf = t.n_faces();
+  for (auto& x : out.g) x.assign(nv, 0.f);
+  for (Index v = 0; v < nv; ++v) out.g[0][v] = out.g[3][v] = out.g[5][v] = 1.f;
+  if (nf == 0 || !(radius > 0) || !(max_aspect > 1)) return out;
+
+  std::vector<Vec3> centroid(nf);
+  std::vector<NormalMoments> tri(nf);
+  for (Index f = 0; f < nf; ++f) {
+    const Vec3 &a = t.positions[t.faces[f][0]], &b = t.positions[t.faces[f][1]], &c = t.positions[t.faces[f][2]];
+    centroid[f] = (a + b + c) / 3.0;
+    const Vec3 n = (b - a).cross(c - a);
+    NormalMoments& m = tri[f];
+    m.area = 0.5 * n.norm();
+    m.first = m.area * centroid[f];
+    m.normal = 0.5 * n;
+    if (m.area > 0) m.second = m.area * n.normalized() * n.normalized().transpose();
+  }
+  const detail::CellGrid grid = detail::cluster_triangles(centroid, triangle_adjacency(t), radius / 4);
+  const Index nc = grid.n_cells();
+  std::vector<NormalMoments> cell(nc);
+  for (Index f = 0; f < nf; ++f) {
+    NormalMoments& m = cell[grid.cell_of_triangle[f]];
+    m.area += tri[f].area, m.first += tri[f].first, m.normal += tri[f].normal, m.second += tri[f].second;
+  }
+  std::vector<Vec3> centre(nc);
+  for (Index c = 0; c < nc; ++c) centre[c] = cell[c].first / std::max(cell[c].area, 1e-300);
+  std::vector<Index> start(nv, kNone);  // a cell each vertex's search starts from: one of its triangles'
+  for (Index f = nf; f-- > 0;)
+    for (Index v : t.faces[f]) start[v] = grid.cell_of_triangle[f];
+
+  const double r2 = radius * radius;
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  tbb::parallel_for(Index(0), nv, [&](Index v) {
+    if (start[v] == kNone) return;
+    Scratch& s = scratch.local();
+    if (s.mark.size() != nc) s.mark.assign(nc, 0), s.stamp = 0;
+    const Index stamp = ++s.stamp;
+    const Vec3& p = t.positions[v];
+    s.queue.assign(1, start[v]);
+    s.mark[start[v]] = stamp;
+    NormalMoments sum;
+    for (std::size_t i = 0; i < s.queue.size(); ++i) {
+      const Index c = s.queue[i];
+      sum.area += cell[c].area, sum.normal += cell[c].normal, sum.second += cell[c].second;
+      for (Index j = grid.adj_start[c]; j < grid.adj_start[c + 1]; ++j) {
+        const Index x = grid.adj[j];
+        if (s.mark[x] != stamp && (centre[x] - p).squaredNorm() < r2) s.mark[x] = stamp, s.queue.push_back(x);
+      }
+    }
+    if (!(sum.area > 0) || !(sum.normal.squaredNorm() > 0)) return;
+    const Vec3 n = sum.normal.normalized();
+    const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - n * n.transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+    es.computeDirect(tangent * (sum.second / sum.area) * tangent);
+    const double l1 = es.eigenvalues()(2), l2 = es.eigenvalues()(1);  // ascending; the least is along n
+    // Flat (l1 = 0): the eigenvectors are arbitrary, t1 possibly n itself; G stays I.
+    if (!(l1 > 0)) return;
+    const double stretch = l2 > 0 ? std::clamp(std::pow(l1 / l2, 0.25), 1.0, max_aspect) : max_aspect;
+    const Vec3 t1 = es.eigenvectors().col(2), t2 = n.cross(t1);
+    const Eigen::Matrix3d G =
+        stretch * t1 * t1.transpose() + (1 / stretch) * t2 * t2.transpose() + n * n.transpose();
+    const double entries[6] = {G(0, 0), G(0, 1), G(0, 2), G(1, 1), G(1, 2), G(2, 2)};
+    for (int k = 0; k < 6; ++k) out.g[k][v] = float(entries[k]);
+  });
+  return out;
+}
+
+}  // namespace qs

@@ -1,0 +1,32 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "quadsimp/mesh/tri_mesh.h"
+
+namespace qs {
+
+//! A metric on the reference surface under which the adaptive mode's quads are long along
+//! the surface's flatter direction and short across its most curved one (ours: the paper's
+//! quads are as square as its smoothing makes them). A quad's error across a direction of
+//! curvature k and length h grows as k h^2, so at a given count the error is least when the
+//! sides follow the principal directions with lengths in the ratio sqrt(k1 / k2).
+struct Anisotropy {
+  //! Per vertex, the symmetric metric G as xx, xy, xz, yy, yz, zz: a vector d is
+  //! sqrt(d^T G d) long under it. G = s t1 t1^T + t2 t2^T / s + n n^T, t1 the most curved
+  //! direction, so G keeps areas. Empty: no anisotropy.
+  std::array<std::vector<float>, 6> g;
+  bool empty() const { return g[0].empty(); }
+};
+
+//! The metric at every vertex of a clean triangle mesh, from the triangles' normals within
+//! `radius` (the part of the ball connected to the vertex on the surface, as the fitmaps
+//! take it, on cells of a quarter of the radius): the tangential part of their
+//! area-weighted second moment has eigenvalues l1 >= l2, the mean squares of the normals'
+//! turn, k1 x and k2 x, so the stretch is s = sqrt(k1 / k2) = (l1 / l2)^(1/4), at most
+//! `max_aspect`. Flat or evenly curved places (l1 = l2) get s = 1. In parallel (TBB).
+Anisotropy compute_anisotropy(const TriMesh& mesh, double radius, double max_aspect);
+
+}  // namespace qs
