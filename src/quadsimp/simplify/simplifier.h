@@ -99,15 +99,14 @@ class Simplifier {
     if (!anisotropy_.empty())
       for (int k = 0; k < 6; ++k) metric_[v][k] = float(ref_.interpolate(anisotropy_.g[k], s));
   }
-  // |d|^2 under the mean of u's and v's metrics, over |d|^2 (1 without anisotropy): a
-  // spring between them along d rests at rest_length() / sqrt of it.
-  double metric_ratio(Index u, Index v, const Vec3& d) const {
-    const auto form = [&](const std::array<float, 6>& g) {
-      return g[0] * d.x() * d.x() + g[3] * d.y() * d.y() + g[5] * d.z() * d.z() +
-             2 * (g[1] * d.x() * d.y() + g[2] * d.x() * d.z() + g[4] * d.y() * d.z());
-    };
-    const double l2 = d.squaredNorm();
-    return l2 > 0 ? 0.5 * (form(metric_[u]) + form(metric_[v])) / l2 : 1.0;
+  // d^T G d, G the mean of u's and v's metrics (with anisotropy): d's squared length
+  // under the metric, which springs and diagonals between u and v are measured by.
+  double metric_length2(Index u, Index v, const Vec3& d) const {
+    const std::array<float, 6>&a = metric_[u], &b = metric_[v];
+    const double xx = a[0] + b[0], xy = a[1] + b[1], xz = a[2] + b[2], yy = a[3] + b[3], yz = a[4] + b[4],
+                 zz = a[5] + b[5];
+    return 0.5 * (xx * d.x() * d.x() + yy * d.y() * d.y() + zz * d.z() * d.z()) +
+           xy * d.x() * d.y() + xz * d.x() * d.z() + yz * d.y() * d.z();
   }
   void update_mu();
   // The mean edge of v's connected component: what its springs and the thresholds

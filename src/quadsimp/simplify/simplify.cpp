@@ -86,11 +86,13 @@ double Simplifier::sample_fitmap(const std::vector<float>& field, const Vec3& p,
 void Simplifier::append_entries(Index f) {
   const double scale = opt_.adaptive ? s_weight(f) : 1.0;
   for (Index k = 0; k < 2; ++k) {
-    double length = norm_of_diagonal(m_, f, k);
-    if (!anisotropy_.empty()) {
+    double length;
+    if (anisotropy_.empty()) {
+      length = norm_of_diagonal(m_, f, k);
+    } else {
       const Vec3 d = m_.position(m_.vertex(f, k)) - m_.position(m_.vertex(f, k + 2));
-      length *= std::sqrt(0.5 * (metric_ratio(m_.vertex(f, k), m_.vertex(f, k + 2), d) +
-                                 metric_ratio(m_.vertex(f, k + 1), m_.vertex(f, k + 3), d)));
+      length = std::sqrt(0.5 * (metric_length2(m_.vertex(f, k), m_.vertex(f, k + 2), d) +
+                                metric_length2(m_.vertex(f, k + 1), m_.vertex(f, k + 3), d)));
     }
     heap_.push_back({float(length * scale), f, version_[f], k});
   }
