@@ -49,8 +49,9 @@ struct SimplifyOptions {
   //! feasible collapse remains (the paper's rule). Ours: with the paper's rule the
   //! blocked parts stay put while the rest keeps coarsening, far past what the fitmap's
   //! error balance asks (bunny: 248 quads, RMS 2.2x the uniform result at that count).
-  //! With 0.15 the bunny, gargoyle and armadillo halt within 10% of the paper's counts,
-  //! the moai 15-35% below (bench/RESULTS.md).
+  //! With 0.15 and square quads (max_aspect 1) the bunny, gargoyle and armadillo halt
+  //! within 10% of the paper's counts, the moai 15-35% below; with the pipeline's stretched
+  //! quads the bunny halts 22% above (828 quads against 681; bench/RESULTS.md).
   double halt_share = 0.15;
   //! Adaptive mode: quads may be up to this many times longer along the surface's flatter
   //! direction than across its most curved one (fitmap/anisotropy.h; 1: as square as the
