@@ -89,7 +89,7 @@ script_and_cli() {  # NAME "PARAM1 PARAM2..." CLI-OPTIONS...
     sed -i "s/name=\"$p\" type=\"RichBool\" value=\"false\"/name=\"$p\" type=\"RichBool\" value=\"true\"/" "$work/$name.mlx"
     grep -q "name=\"$p\" type=\"RichBool\" value=\"true\"" "$work/$name.mlx" || { fail "$name: no $p in the script"; return 1; }
   done
-  if ! server -i "$bunny" -o "$work/$name.ply" -m ff -s "$work/$name.mlx" ||
+  if ! server -i "$bunny" -o "$work/$name.ply" -m ff -s "$work/$name.mlx" </dev/null ||
      ! "$cli" stats "$bunny" "$work/$name.ply" --json --samples 50000 >"$work/$name.json"; then
     fail "$name script failed on the bunny"; cat "$work/server.log"; return 1
   fi
@@ -108,51 +108,46 @@ print("ok: adaptive, automatic halting: plugin and CLI stop at", a["faces"], "qu
 PY
 fi
 
-# 3b'. A smaller halting share from a script: it stops where the CLI's does, earlier.
+# Runs the adaptive script with one Float parameter set, and the CLI with the matching
+# options, on the bunny; checks that both stop at the same mesh, then runs the Python
+# check on stdin with the CLI's, the script's and the default script's stats as argv.
+float_setting_and_cli() {  # NAME PARAM VALUE CLI-OPTIONS... (the check on stdin)
+  local name=$1 param=$2 value=$3
+  shift 3
+  sed "s/name=\"$param\" type=\"RichFloat\" value=\"[0-9.]*\"/name=\"$param\" type=\"RichFloat\" value=\"$value\"/" \
+    "$work/adaptive.mlx" >"$work/$name.mlx"
+  if ! grep -q "name=\"$param\" type=\"RichFloat\" value=\"$value\"" "$work/$name.mlx"; then
+    fail "$name: no $param in the script"; return
+  fi
+  if ! server -i "$bunny" -o "$work/$name.ply" -m ff -s "$work/$name.mlx" </dev/null ||
+     ! "$cli" stats "$bunny" "$work/$name.ply" --json --samples 50000 >"$work/$name.json"; then
+    fail "$name script failed on the bunny"; cat "$work/server.log"; return
+  fi
+  "$cli" simplify "$bunny" "$work/cli_$name.ply" -q --adaptive --auto-halt "$@" </dev/null >/dev/null
+  "$cli" stats "$bunny" "$work/cli_$name.ply" --json --samples 50000 >"$work/cli_$name.json"
+  python3 -c 'import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+for k in ("faces", "vertices", "max_valence", "regular_percent"):
+    assert a[k] == b[k], (k, a[k], b[k])' "$work/cli_$name.json" "$work/$name.json" </dev/null || { fail "$name: plugin and CLI differ"; return; }
+  python3 - "$work/cli_$name.json" "$work/$name.json" "$work/adaptive.json" || fail "$name: $param had no effect"
+}
+
 if [ -f "$work/adaptive.json" ]; then
-  sed 's/name="HaltShare" type="RichFloat" value="[0-9.]*"/name="HaltShare" type="RichFloat" value="0.05"/' \
-    "$work/adaptive.mlx" >"$work/share.mlx"
-  if ! grep -q 'name="HaltShare" type="RichFloat" value="0.05"' "$work/share.mlx"; then
-    fail "share: no HaltShare in the script"
-  elif ! server -i "$bunny" -o "$work/share.ply" -m ff -s "$work/share.mlx" ||
-       ! "$cli" stats "$bunny" "$work/share.ply" --json --samples 50000 >"$work/share.json"; then
-    fail "share script failed on the bunny"; cat "$work/server.log"
-  else
-    "$cli" simplify "$bunny" "$work/cli_share.ply" -q --adaptive --auto-halt --halt-share 0.05 >/dev/null
-    "$cli" stats "$bunny" "$work/cli_share.ply" --json --samples 50000 >"$work/cli_share.json"
-    python3 - "$work/cli_share.json" "$work/share.json" "$work/adaptive.json" <<'PY' || fail "share: plugin and CLI differ"
+  # 3b'. A smaller halting share from a script: it stops where the CLI's does, earlier.
+  float_setting_and_cli share HaltShare 0.05 --halt-share 0.05 <<'PY'
 import json, sys
 a, b, default = (json.load(open(p)) for p in sys.argv[1:4])
-for k in ("faces", "vertices", "max_valence", "regular_percent"):
-    assert a[k] == b[k], (k, a[k], b[k])
 assert b["faces"] > default["faces"], (b["faces"], default["faces"])
 print("ok: halting share 0.05: plugin and CLI stop at", b["faces"], "quads, against", default["faces"])
 PY
-  fi
-fi
-
-# 3b''. Square quads from a script (MaxAspect 1): where the CLI's --max-aspect 1 stops, not
-#       where the default does.
-if [ -f "$work/adaptive.json" ]; then
-  sed 's/name="MaxAspect" type="RichFloat" value="[0-9.]*"/name="MaxAspect" type="RichFloat" value="1"/' \
-    "$work/adaptive.mlx" >"$work/square.mlx"
-  if ! grep -q 'name="MaxAspect" type="RichFloat" value="1"' "$work/square.mlx"; then
-    fail "square: no MaxAspect in the script"
-  elif ! server -i "$bunny" -o "$work/square.ply" -m ff -s "$work/square.mlx" ||
-       ! "$cli" stats "$bunny" "$work/square.ply" --json --samples 50000 >"$work/square.json"; then
-    fail "square script failed on the bunny"; cat "$work/server.log"
-  else
-    "$cli" simplify "$bunny" "$work/cli_square.ply" -q --adaptive --auto-halt --max-aspect 1 >/dev/null
-    "$cli" stats "$bunny" "$work/cli_square.ply" --json --samples 50000 >"$work/cli_square.json"
-    python3 - "$work/cli_square.json" "$work/square.json" "$work/adaptive.json" <<'PY' || fail "square: plugin and CLI differ"
+  # 3b''. Square quads from a script (MaxAspect 1): where the CLI's --max-aspect 1 stops,
+  #       not where the default does.
+  float_setting_and_cli square MaxAspect 1 --max-aspect 1 <<'PY'
 import json, sys
 a, b, default = (json.load(open(p)) for p in sys.argv[1:4])
-for k in ("faces", "vertices", "max_valence", "regular_percent"):
-    assert a[k] == b[k], (k, a[k], b[k])
 assert (b["faces"], b["rms_e3"]) != (default["faces"], default["rms_e3"]), "MaxAspect 1 changed nothing"
 print("ok: largest aspect 1: plugin and CLI stop at", b["faces"], "quads, against", default["faces"])
 PY
-  fi
 fi
 
 # 3c. The fit to the input from a script: the same as the CLI's, and closer than without.
