@@ -64,7 +64,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   s->add_option("--max-aspect", simp.max_aspect,
-                "adaptive: how much longer than wide quads may grow along the flatter direction (1: square quads, the paper's)")
+                "adaptive: how much longer than wide quads may grow along the flatter direction "
+                "(1: square quads, the paper's)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
   s->add_flag("--preserve-boundary", simp.preserve_boundary, "keep the border exactly as it is");

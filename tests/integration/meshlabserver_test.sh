@@ -128,7 +128,8 @@ float_setting_and_cli() {  # NAME PARAM VALUE CLI-OPTIONS... (the check on stdin
   python3 -c 'import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
 for k in ("faces", "vertices", "max_valence", "regular_percent"):
-    assert a[k] == b[k], (k, a[k], b[k])' "$work/cli_$name.json" "$work/$name.json" </dev/null || { fail "$name: plugin and CLI differ"; return; }
+    assert a[k] == b[k], (k, a[k], b[k])' "$work/cli_$name.json" "$work/$name.json" </dev/null ||
+    { fail "$name: plugin and CLI differ"; return; }
   python3 - "$work/cli_$name.json" "$work/$name.json" "$work/adaptive.json" || fail "$name: $param had no effect"
 }
 

@@ -450,7 +450,8 @@ def test_largest_aspect_reaches_the_loop_as_the_clis_does(bunny_path, cli, tmp_p
     # each the CLI's result with the same setting, and the stretched ones closer to the input.
     stretched, _ = plugin_and_cli(bunny_path, cli, tmp_path, {"adaptive": True, "targetfacenum": 1000},
                                   ["--adaptive", "--faces", "1000"])
-    square, stats = plugin_and_cli(bunny_path, cli, tmp_path, {"adaptive": True, "targetfacenum": 1000, "maxaspect": 1.0},
+    square, stats = plugin_and_cli(bunny_path, cli, tmp_path,
+                                   {"adaptive": True, "targetfacenum": 1000, "maxaspect": 1.0},
                                    ["--adaptive", "--faces", "1000", "--max-aspect", "1"])
     assert square["rms_e3"] == pytest.approx(stats["rms_e3"], rel=0.01)
     assert stretched["rms_e3"] < 0.97 * square["rms_e3"]

@@ -582,6 +582,18 @@ TEST(Anisotropy, a_torus_gets_the_aspect_of_its_curvatures_and_a_sphere_none) {
   EXPECT_LT(most, 1.1);
 }
 
+TEST(Anisotropy, does_not_depend_on_the_number_of_threads) {
+  // Each vertex's ball is its own work, summed in the order of its search.
+  const TriMesh t = flat_bumpy_ellipsoid(60, 90);
+  Anisotropy one, two;
+  tbb::task_arena(1).execute([&] { one = compute_anisotropy(t, 0.2, 3.0); });
+  tbb::task_arena(2).execute([&] { two = compute_anisotropy(t, 0.2, 3.0); });
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(one.g[k], two.g[k]);
+  std::size_t stretched = 0;  // and the bumps do stretch it somewhere
+  for (Index v = 0; v < t.n_vertices(); ++v) stretched += one.g[0][v] + one.g[3][v] + one.g[5][v] != 3.f;
+  EXPECT_GT(stretched, t.n_vertices() / 2);
+}
+
 TEST(Adaptive, quads_grow_long_along_a_torus_and_come_out_closer) {
   // At the same count, quads stretched along the tube (max_aspect 3) against square ones.
   const TriMesh t = tri_torus(240, 80, 1.0, 0.3);
