@@ -338,6 +338,7 @@ TEST(Simplify, every_change_keeps_the_mesh_valid_and_every_border_vertex_a_candi
       {"holes", without_faces(tri_sphere(16, 32), [](const Vec3& c) { return std::abs(c.z()) > 0.8 || c.x() > 0.9; }),
        60},
       {"holes, adaptive", without_faces(tri_sphere(16, 32), [](const Vec3& c) { return c.x() > 0.9; }), 0},
+      {"torus, adaptive (quads stretched along the tube)", tri_torus(24, 48), 0},
       {"strip", strip, 10},
       {"torus", tri_torus(12, 24), 30},
       {"cylinder of long triangles (folds, unfolding)", cad_cylinder(32, 1, 2.0), 30},
@@ -356,6 +357,7 @@ TEST(Simplify, every_change_keeps_the_mesh_valid_and_every_border_vertex_a_candi
       fitmaps = compute_fitmaps(c.tri);
       opt.adaptive = opt.refuse_folds = true;
       opt.fitmaps = &fitmaps;
+      opt.max_aspect = SimplifyParams().max_aspect;
     }
     SimplifyReport r;
     EXPECT_NO_THROW(r = simplify(c.quads, ref, opt));
