@@ -57,10 +57,11 @@ struct SimplifyOptions {
   //! direction than across its most curved one (fitmap/anisotropy.h; 1: as square as the
   //! smoothing makes them, the paper's). Ours. The springs' rest lengths and the collapse
   //! priority measure lengths in that metric, computed at twice the side a quad would have
-  //! if the target (or the predicted halting count) were spread evenly. The pipeline's 3:
-  //! over the twelve fixed counts of bench/fixed_counts.py the RMS gain over uniform went
-  //! from 20.8% to about 24.5%, at 2 to 23.3%, at 4 to 24.7%; with the metric turned a
-  //! quarter (stretched across the curvature) it fell to 7.1% (bench/RESULTS.md).
+  //! if the target (or the predicted halting count; without either, none) were spread
+  //! evenly. The pipeline's 3: over the twelve fixed counts of bench/fixed_counts.py the
+  //! RMS gain over uniform went from 20.8% to 25.8% (a prototype gave 24.4% at 2, 24.6% at
+  //! 3, 24.7% at 4); with the metric turned a quarter (stretched across the curvature) it
+  //! fell to 7.1% (bench/RESULTS.md, "Stretched quads").
   double max_aspect = 1.0;
   //! Gauss-Seidel sweeps of the spring relaxation after each collapse.
   int smoothing_sweeps = 3;
