@@ -30,7 +30,7 @@ for f in "Quad Mesh Simplification" "Convert to Pure Quad Mesh" "Compute Fitmaps
   grep -q "section .* $f" "$work/dump.txt" || fail "filter '$f' missing from meshlabserver -d"
 done
 for p in "Adaptive (fitmaps)" "Target number of quads" "Automatic halting (adaptive)" \
-         "Halting share (automatic halting)" "Fitmap tolerance tau" \
+         "Halting share (automatic halting)" "Fitmap tolerance tau" "Largest aspect (adaptive)" \
          "Preserve boundary" "Fast (one pass)" "Fit vertices to the input" "Reference mesh" "Distance samples"; do
   grep -q "$p" "$work/dump.txt" || fail "parameter '$p' missing from meshlabserver -d"
 done
