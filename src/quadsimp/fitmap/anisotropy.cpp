@@ -37,23 +37,18 @@ Anisotropy compute_anisotropy(const TriMesh& t, double radius, double max_aspect
   if (nf == 0 || !(radius > 0) || !(max_aspect > 1)) return out;
 
   std::vector<Vec3> centroid(nf);
-  std::vector<NormalMoments> tri(nf);
-  for (Index f = 0; f < nf; ++f) {
-    const Vec3 &a = t.positions[t.faces[f][0]], &b = t.positions[t.faces[f][1]], &c = t.positions[t.faces[f][2]];
-    centroid[f] = (a + b + c) / 3.0;
-    const Vec3 n = (b - a).cross(c - a);
-    NormalMoments& m = tri[f];
-    m.area = 0.5 * n.norm();
-    m.first = m.area * centroid[f];
-    m.normal = 0.5 * n;
-    if (m.area > 0) m.second = m.area * n.normalized() * n.normalized().transpose();
-  }
+  for (Index f = 0; f < nf; ++f)
+    centroid[f] = (t.positions[t.faces[f][0]] + t.positions[t.faces[f][1]] + t.positions[t.faces[f][2]]) / 3.0;
   const detail::CellGrid grid = detail::cluster_triangles(centroid, triangle_adjacency(t), radius / 4);
   const Index nc = grid.n_cells();
   std::vector<NormalMoments> cell(nc);
   for (Index f = 0; f < nf; ++f) {
+    const Vec3 &a = t.positions[t.faces[f][0]], &b = t.positions[t.faces[f][1]], &c = t.positions[t.faces[f][2]];
+    const Vec3 n = (b - a).cross(c - a);
+    const double area = 0.5 * n.norm();
     NormalMoments& m = cell[grid.cell_of_triangle[f]];
-    m.area += tri[f].area, m.first += tri[f].first, m.normal += tri[f].normal, m.second += tri[f].second;
+    m.area += area, m.first += area * centroid[f], m.normal += 0.5 * n;
+    if (area > 0) m.second += area * n.normalized() * n.normalized().transpose();
   }
   std::vector<Vec3> centre(nc);
   for (Index c = 0; c < nc; ++c) centre[c] = cell[c].first / std::max(cell[c].area, 1e-300);

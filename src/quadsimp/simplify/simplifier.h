@@ -102,7 +102,8 @@ class Simplifier {
   // d^T G d, G the mean of u's and v's metrics (with anisotropy): d's squared length
   // under the metric, which springs and diagonals between u and v are measured by.
   double metric_length2(Index u, Index v, const Vec3& d) const {
-    const std::array<float, 6>&a = metric_[u], &b = metric_[v];
+    const auto& a = metric_[u];
+    const auto& b = metric_[v];
     const double xx = a[0] + b[0], xy = a[1] + b[1], xz = a[2] + b[2], yy = a[3] + b[3], yz = a[4] + b[4],
                  zz = a[5] + b[5];
     return 0.5 * (xx * d.x() * d.x() + yy * d.y() * d.y() + zz * d.z() * d.z()) +

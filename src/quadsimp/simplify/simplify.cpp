@@ -81,7 +81,7 @@ double Simplifier::sample_fitmap(const std::vector<float>& field, const Vec3& p,
 // onto M0 along the face normal, with F_S averaged over the face (s_weight()); uniform
 // mode: |d|. With anisotropy |d| is measured in the metric under the face's four corners:
 // without it there, the springs alone stretched the quads and the RMS gain stayed where it
-// was (20.7% over the fixed counts; bench/RESULTS.md). Appends both diagonals of f with
+// was (a prototype: 20.7% over the fixed counts; bench/RESULTS.md). Appends both diagonals of f with
 // the face's current version.
 void Simplifier::append_entries(Index f) {
   const double scale = opt_.adaptive ? s_weight(f) : 1.0;
