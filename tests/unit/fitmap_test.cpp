@@ -542,7 +542,7 @@ TEST(Adaptive, keys_take_f_s_over_the_face_so_fine_noise_does_not_scatter_sizes)
 TEST(Anisotropy, a_plane_keeps_square_quads) {
   TriMesh t = tri_grid(20, 20);
   clean(t);
-  const Anisotropy a = compute_anisotropy(t, 0.2, 3.0);
+  const Anisotropy a = compute_anisotropy(t, triangle_adjacency(t), 0.2, 3.0);
   for (Index v = 0; v < t.n_vertices(); ++v)
     for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}) ASSERT_NEAR(metric_along(a, v, d), 1.0, 1e-6);
 }
@@ -550,12 +550,12 @@ TEST(Anisotropy, a_plane_keeps_square_quads) {
 TEST(Anisotropy, a_cylinder_stretches_along_its_axis_up_to_the_bound) {
   // Bent across x only: k2 = 0, so the stretch is the bound; the axis (y) is the long side.
   const TriMesh t = height_field(60, 0.4, [](double x, double) { return std::sqrt(1.0 - x * x); });
-  const Anisotropy a = compute_anisotropy(t, 0.1, 3.0);
+  const Anisotropy a = compute_anisotropy(t, triangle_adjacency(t), 0.1, 3.0);
   const Index c = centre_vertex(t);
   EXPECT_NEAR(metric_along(a, c, Vec3(0, 1, 0)), 1 / 3.0, 1e-3);
   EXPECT_NEAR(metric_along(a, c, Vec3(1, 0, 0)), 3.0, 1e-2);
   // Areas are kept: the two sides' factors multiply to one.
-  const Anisotropy b = compute_anisotropy(t, 0.1, 2.0);
+  const Anisotropy b = compute_anisotropy(t, triangle_adjacency(t), 0.1, 2.0);
   EXPECT_NEAR(metric_along(b, c, Vec3(0, 1, 0)) * metric_along(b, c, Vec3(1, 0, 0)), 1.0, 1e-2);
 }
 
@@ -564,14 +564,14 @@ TEST(Anisotropy, a_torus_gets_the_aspect_of_its_curvatures_and_a_sphere_none) {
   // the stretch is sqrt(k1 / k2) = sqrt((R + r) / r), 2.08 for R = 1, r = 0.3.
   const double R = 1, r = 0.3;
   const TriMesh torus = tri_torus(240, 80, R, r);
-  const Anisotropy a = compute_anisotropy(torus, 0.1, 3.0);
+  const Anisotropy a = compute_anisotropy(torus, triangle_adjacency(torus), 0.1, 3.0);
   const Index outer = 0;  // (R + r, 0, 0)
   ASSERT_NEAR(torus.positions[outer].x(), R + r, 1e-12);
   const double stretch = std::sqrt((R + r) / r);
   EXPECT_NEAR(metric_along(a, outer, Vec3(0, 0, 1)), stretch, 0.1 * stretch);  // around the tube
   EXPECT_NEAR(metric_along(a, outer, Vec3(0, 1, 0)), 1 / stretch, 0.1 / stretch);  // along it
   const TriMesh sphere = tri_sphere(60, 90);
-  const Anisotropy s = compute_anisotropy(sphere, 0.3, 3.0);
+  const Anisotropy s = compute_anisotropy(sphere, triangle_adjacency(sphere), 0.3, 3.0);
   double most = 1;
   for (Index v = 0; v < sphere.n_vertices(); ++v) {
     const Vec3 p = sphere.positions[v];
@@ -586,8 +586,8 @@ TEST(Anisotropy, does_not_depend_on_the_number_of_threads) {
   // Each vertex's ball is its own work, summed in the order of its search.
   const TriMesh t = flat_bumpy_ellipsoid(60, 90);
   Anisotropy one, two;
-  tbb::task_arena(1).execute([&] { one = compute_anisotropy(t, 0.2, 3.0); });
-  tbb::task_arena(2).execute([&] { two = compute_anisotropy(t, 0.2, 3.0); });
+  tbb::task_arena(1).execute([&] { one = compute_anisotropy(t, triangle_adjacency(t), 0.2, 3.0); });
+  tbb::task_arena(2).execute([&] { two = compute_anisotropy(t, triangle_adjacency(t), 0.2, 3.0); });
   for (int k = 0; k < 6; ++k) EXPECT_EQ(one.g[k], two.g[k]);
   std::size_t stretched = 0;  // and the bumps do stretch it somewhere
   for (Index v = 0; v < t.n_vertices(); ++v) stretched += one.g[0][v] + one.g[3][v] + one.g[5][v] != 3.f;

@@ -29,7 +29,8 @@ struct Scratch {
 
 }  // namespace
 
-Anisotropy compute_anisotropy(const TriMesh& t, double radius, double max_aspect) {
+Anisotropy compute_anisotropy(const TriMesh& t, const std::vector<std::array<Index, 3>>& adjacency,
+                              double radius, double max_aspect) {
   Anisotropy out;
   const Index nv = t.n_vertices(), nf = t.n_faces();
   for (auto& x : out.g) x.assign(nv, 0.f);
@@ -39,7 +40,7 @@ Anisotropy compute_anisotropy(const TriMesh& t, double radius, double max_aspect
   std::vector<Vec3> centroid(nf);
   for (Index f = 0; f < nf; ++f)
     centroid[f] = (t.positions[t.faces[f][0]] + t.positions[t.faces[f][1]] + t.positions[t.faces[f][2]]) / 3.0;
-  const detail::CellGrid grid = detail::cluster_triangles(centroid, triangle_adjacency(t), radius / 4);
+  const detail::CellGrid grid = detail::cluster_triangles(centroid, adjacency, radius / 4);
   const Index nc = grid.n_cells();
   std::vector<NormalMoments> cell(nc);
   for (Index f = 0; f < nf; ++f) {

@@ -27,6 +27,8 @@ struct Anisotropy {
 //! area-weighted second moment has eigenvalues l1 >= l2, the mean squares of the normals'
 //! turn, k1 x and k2 x, so the stretch is s = sqrt(k1 / k2) = (l1 / l2)^(1/4), at most
 //! `max_aspect`. Flat or evenly curved places (l1 = l2) get s = 1. In parallel (TBB).
-Anisotropy compute_anisotropy(const TriMesh& mesh, double radius, double max_aspect);
+//! `adjacency` is the mesh's triangle_adjacency() (the reference surface holds it).
+Anisotropy compute_anisotropy(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
+                              double radius, double max_aspect);
 
 }  // namespace qs

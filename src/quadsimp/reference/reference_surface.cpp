@@ -125,6 +125,7 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
     const auto& t = mesh_.faces[f];
     const Vec3 n = mesh_.area_normal(t);
     normals_[f] = n.normalized();
+    area_ += 0.5 * n.norm();
     for (int k = 0; k < 3; ++k) {
       vertex_normals_[t[k]] += n;
       edge_sum += (P[t[k]] - P[t[(k + 1) % 3]]).norm();

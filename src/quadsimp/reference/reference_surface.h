@@ -33,6 +33,9 @@ class ReferenceSurface {
   const TriMesh& mesh() const { return mesh_; }
   double bbox_diagonal() const { return diagonal_; }
   double mean_edge_length() const { return mean_edge_; }
+  double area() const { return area_; }
+  //! Each triangle's neighbours across its edges k -> k+1 (triangle_adjacency()).
+  const std::vector<std::array<Index, 3>>& adjacency() const { return adjacency_; }
   //! Unit normal of triangle f.
   const Vec3& face_normal(Index f) const { return normals_[f]; }
   //! Whether triangle f is part of, or touches, a small patch folded over onto the
@@ -92,7 +95,7 @@ class ReferenceSurface {
   // Per vertex, the border edge leaving it and the one arriving at it (3 * triangle +
   // corner, the edge running from that corner to the next), or kNone.
   std::vector<Index> border_out_, border_in_;
-  double diagonal_ = 0, mean_edge_ = 0;
+  double diagonal_ = 0, mean_edge_ = 0, area_ = 0;
   Vec3 origin_ = Vec3::Zero();  // subtracted from every point Embree sees
   double unit_ = 1;             // then multiplied by this power of two (Embree's unit length)
   // A point as Embree holds it.

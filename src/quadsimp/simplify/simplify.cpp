@@ -404,10 +404,8 @@ SimplifyReport Simplifier::run() {
     const double count = opt_.target_faces > 0 ? double(opt_.target_faces) : rep_.predicted_faces;
     if (opt_.max_aspect > 1 && count > 0) {
       // The metric at the scale of the result's quads: twice the side of count squares.
-      const TriMesh& t = ref_.mesh();
-      double area = 0;
-      for (const auto& f : t.faces) area += triangle_area(t.positions[f[0]], t.positions[f[1]], t.positions[f[2]]);
-      anisotropy_ = compute_anisotropy(t, 2 * std::sqrt(area / count), opt_.max_aspect);
+      anisotropy_ = compute_anisotropy(ref_.mesh(), ref_.adjacency(), 2 * std::sqrt(ref_.area() / count),
+                                       opt_.max_aspect);
       metric_.assign(m_.vertex_capacity(), {1.f, 0.f, 0.f, 1.f, 0.f, 1.f});  // where a vertex has no foot
     }
   }
