@@ -115,6 +115,7 @@ int run_simplify(const SimplifyArgs& a) {
   params.m_factor = a.m_factor;
   params.halt_share = a.halt_share;
   params.max_aspect = a.max_aspect;
+  params.reach = a.reach;
   params.preserve_boundary = a.preserve_boundary;
   params.fast = a.fast;
   params.fit_to_input = a.fit_to_input;
@@ -148,7 +149,8 @@ int run_simplify(const SimplifyArgs& a) {
                                   ", \"unfolds\": " + n(r.unfolds) + ", \"input_faces\": " + n(r.initial_faces) +
                                   ", \"refused\": {\"topology\": " + n(r.refused_topology) +
                                   ", \"valence\": " + n(r.refused_valence) + ", \"geometry\": " + n(r.refused_geometry) +
-                                  ", \"fitmap\": " + n(r.refused_fitmap) + "}, \"blocked_share\": " + share + "}";
+                                  ", \"fitmap\": " + n(r.refused_fitmap) + ", \"reach\": " + n(r.refused_reach) +
+                                  "}, \"blocked_share\": " + share + "}";
         j.pop_back();
         std::printf("%s%s\n", j.c_str(), extra.c_str());
         return kOk;

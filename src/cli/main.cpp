@@ -68,6 +68,11 @@ int main(int argc, char** argv) {
                 "(1: square quads, the paper's)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
+  s->add_option("--reach", simp.reach,
+                "adaptive: refuse collapses that leave a large quad's centre or edge midpoints without the input "
+                "along its normal within this share of the bounding-box diagonal (0: no check)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   s->add_flag("--preserve-boundary", simp.preserve_boundary, "keep the border exactly as it is");
   s->add_flag("--fast", simp.fast, "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");
   s->add_flag("--fit-to-input", simp.fit_to_input,

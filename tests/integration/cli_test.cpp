@@ -160,6 +160,21 @@ TEST_F(Cli, automatic_halting_that_runs_out_of_collapses_says_so) {
   EXPECT_EQ(r.out.find("automatic halting stopped"), std::string::npos) << r.out;
 }
 
+TEST_F(Cli, the_reach_holds_quads_on_the_input_and_says_so) {
+  // The M-fitmap made powerless (--m-factor 0.001), a sphere asked for 6 quads would be a
+  // cube, its faces' centres far inside: the reach refuses that, and the note names it.
+  const std::string args = "simplify " + input_ + " " + p("a.ply") + " --adaptive --faces 6 --m-factor 0.001";
+  CliRun r = run(args);
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("0 M-fitmap; "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(" 0 reach)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" reach)"), std::string::npos) << r.out;
+  r = run(args + " --reach 0");
+  EXPECT_NE(r.out.find(" 0 reach)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("stopped at 8 quads"), std::string::npos) << r.out;
+  EXPECT_EQ(run(args + " --reach 2").code, 2);
+}
+
 TEST_F(Cli, a_result_with_folded_quads_says_so) {
   // A CAD cylinder of one row of long triangles with fan caps comes out with quads folded
   // over its rims (README, Limits). The log says how many, unless told to be quiet; a

@@ -121,9 +121,12 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
       ++rep_.refused_geometry;
       return false;
     }
-    if (opt_.adaptive && !within_m_fitmap(g, q)) {  // the enlarged faces, as for a diagonal collapse
-      ++rep_.refused_fitmap;
-      return false;
+    if (opt_.adaptive) {  // the enlarged faces, as for a diagonal collapse
+      const Verdict v = check_grown_face(g, q);
+      if (v != Verdict::Ok) {
+        ++(v == Verdict::Fitmap ? rep_.refused_fitmap : rep_.refused_reach);
+        return false;
+      }
     }
   }
   collapse_chord(m_, chord, chord_pos_);

@@ -19,6 +19,7 @@ std::string check_params(const SimplifyParams& p) {
   if (!(p.m_factor > 0)) return "the M-fitmap factor must be positive";
   if (!(p.halt_share > 0 && p.halt_share <= 1)) return "the halting share must be in (0, 1]";
   if (!(p.max_aspect >= 1)) return "the largest aspect must be at least 1";
+  if (!(p.reach >= 0 && p.reach <= 1)) return "the reach must be in [0, 1]";
   return {};
 }
 
@@ -42,6 +43,7 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
     opt.m_factor = p.m_factor;
     opt.halt_share = p.halt_share;
     opt.max_aspect = p.max_aspect;
+    opt.reach = p.reach;
   }
   SimplifyReport r = simplify(in.quads, ref, opt);
   if (p.fit_to_input && !r.cancelled) {
@@ -60,7 +62,7 @@ std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
   const auto refusals = [&] {
     return "every remaining collapse was refused (refusals over the run: " + n(r.refused_topology) +
            " topology, e.g. holes and kept borders; " + n(r.refused_valence) + " valence cap; " +
-           n(r.refused_geometry) + " shape; " + n(r.refused_fitmap) + " M-fitmap)";
+           n(r.refused_geometry) + " shape; " + n(r.refused_fitmap) + " M-fitmap; " + n(r.refused_reach) + " reach)";
   };
   if (target_faces == 0 && r.ran_out)
     return "automatic halting stopped at " + n(r.faces) + " quads (the input converts to " + n(r.initial_faces) +

@@ -18,6 +18,7 @@ struct SimplifyParams {
   double m_factor = SimplifyOptions().m_factor;      //!< adaptive: face radius <= F_M / m_factor
   double halt_share = SimplifyOptions().halt_share;  //!< auto_halt: see SimplifyOptions::halt_share
   double max_aspect = 3.0;       //!< adaptive: see SimplifyOptions::max_aspect (1: square quads)
+  double reach = 0.045;          //!< adaptive: see SimplifyOptions::reach (0: no check)
   bool preserve_boundary = false;
   bool fast = false;             //!< one optimisation pass per collapse (the paper's loop)
   bool fit_to_input = false;     //!< afterwards, fit_to_surface(): vertices leave the input

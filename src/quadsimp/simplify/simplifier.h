@@ -70,7 +70,7 @@ class Simplifier {
   // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
   // once it passes the topology and valence checks. The loop and blocked_share() both
   // ask here, so that the halting measure sees exactly the collapses the loop would do.
-  enum class Verdict { Topology, Valence, Geometry, Fitmap, Ok };
+  enum class Verdict { Topology, Valence, Geometry, Fitmap, Reach, Ok };
   Verdict check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
   bool touches_kept_border(Index f, Index k) const {
     return opt_.preserve_boundary && (m_.is_border_vertex(m_.vertex(f, k)) || m_.is_border_vertex(m_.vertex(f, k + 2)));
@@ -80,8 +80,10 @@ class Simplifier {
            m_.valence(m_.vertex(f, k)) + m_.valence(m_.vertex(f, k + 2)) - 2 > opt_.max_valence;
   }
   bool place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
-  bool m_fitmap_allows(Index f, Index k, const Vec3& pos) const;
-  bool within_m_fitmap(Index g, const Vec3* q) const;
+  // Adaptive mode's checks on the faces a collapse grows: the M-fitmap, then the reach.
+  Verdict check_grown_faces(Index f, Index k, const Vec3& pos) const;
+  Verdict check_grown_face(Index g, const Vec3* q) const;
+  bool meets_input(Index g, const Vec3* q, const Vec3& centre) const;
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
   void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
   void after_change(const Index* first, const Index* last);
@@ -202,6 +204,7 @@ class Simplifier {
   // Adaptive mode: the F_S range the priority is clamped to, and the target size of each
   // vertex relative to the rest (s_mid / F_S under it, clamped alike) and its mean.
   double s_lo_ = 0, s_hi_ = std::numeric_limits<double>::infinity(), s_mid_ = 1;
+  double reach_ = 0;  // SimplifyOptions::reach times M0's bounding-box diagonal
   std::vector<double> s_foot_;  // clamped F_S under each vertex
   // target_size(s_foot_[v]), written only by record_foot(): rest_length() reads it for
   // every spring, and computing it there instead (two divisions a spring) measured 2-3%

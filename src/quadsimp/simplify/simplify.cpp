@@ -146,29 +146,47 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
   return false;
 }
 
-// [paper 3.3] No face the collapse enlarges may have a radius (largest centre-to-
-// corner distance) above F_M at its centre. The faces are those around a and c
-// after the merge, with the survivor at `pos`.
 Simplifier::Verdict Simplifier::check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
   if (!can_collapse_diagonal(m_, f, k) || touches_kept_border(f, k)) return Verdict::Topology;
   if (exceeds_valence(f, k)) return Verdict::Valence;
   if (!place(f, k, pos, foot)) return Verdict::Geometry;
-  if (opt_.adaptive && !m_fitmap_allows(f, k, pos)) return Verdict::Fitmap;
-  return Verdict::Ok;
+  return opt_.adaptive ? check_grown_faces(f, k, pos) : Verdict::Ok;
 }
 
-bool Simplifier::m_fitmap_allows(Index f, Index k, const Vec3& pos) const {
-  return for_each_face_after_collapse(m_, f, k, pos, [&](Index g, const Vec3* q) { return within_m_fitmap(g, q); });
+// The faces a collapse grows are those around a and c after the merge, with the
+// survivor at `pos`; the first one refused gives the verdict.
+Simplifier::Verdict Simplifier::check_grown_faces(Index f, Index k, const Vec3& pos) const {
+  Verdict v = Verdict::Ok;
+  for_each_face_after_collapse(m_, f, k, pos, [&](Index g, const Vec3* q) {
+    v = check_grown_face(g, q);
+    return v == Verdict::Ok;
+  });
+  return v;
 }
 
-// Whether face g with corners q has a radius within F_M at its centre.
-bool Simplifier::within_m_fitmap(Index g, const Vec3* q) const {
+// Face g with corners q: [paper 3.3] its radius (largest centre-to-corner distance) at
+// most F_M at its centre; then ours, the input within reach along its normal.
+Simplifier::Verdict Simplifier::check_grown_face(Index g, const Vec3* q) const {
   const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
   double radius = 0;
   for (int i = 0; i < 4; ++i) radius = std::max(radius, (q[i] - centre).norm());
   Index hint = centre_hint(g);
   const double fm = sample_fitmap(opt_.fitmaps->m, centre, quad_normal(q[0], q[1], q[2], q[3]), hint);
-  return radius * opt_.m_factor <= fm;
+  if (radius * opt_.m_factor > fm) return Verdict::Fitmap;
+  if (reach_ > 0 && 2 * radius >= reach_ && !meets_input(g, q, centre)) return Verdict::Reach;
+  return Verdict::Ok;
+}
+
+// SimplifyOptions::reach: rays from the centre and the edges' midpoints, as the
+// projectability measure casts them (metrics.h).
+bool Simplifier::meets_input(Index g, const Vec3* q, const Vec3& centre) const {
+  for (Index i = 0; i < 4; ++i)
+    if (m_.is_border_vertex(m_.vertex(g, i))) return true;  // its rays may pass through a hole
+  const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]);
+  if (!ref_.ray_project(centre, n, reach_).found()) return false;
+  for (int i = 0; i < 4; ++i)
+    if (!ref_.ray_project(0.5 * (q[i] + q[(i + 1) % 4]), n, reach_).found()) return false;
+  return true;
 }
 
 void Simplifier::update_mu() {
@@ -255,7 +273,7 @@ double Simplifier::blocked_share() {
         SurfacePoint foot;
         const Verdict v = check_collapse(f, k, pos, foot);
         allowed = v == Verdict::Ok;
-        refused |= v == Verdict::Fitmap;
+        refused |= v == Verdict::Fitmap || v == Verdict::Reach;
       }
       if (refused && !allowed) blocked_area_[f] = 0.5 * m_.face_area_normal(f).norm();
     }
@@ -400,6 +418,7 @@ SimplifyReport Simplifier::run() {
       s_hi_ = std::min(double(sorted[std::size_t((1 - q) * (sorted.size() - 1))]), 2.0 * s_mid_);
     }
     s_foot_.assign(m_.vertex_capacity(), s_mid_);  // size 1 where a vertex has no foot
+    reach_ = opt_.reach * ref_.bbox_diagonal();
     if (opt_.target_faces == 0) rep_.predicted_faces = predicted_halt();
     const double count = opt_.target_faces > 0 ? double(opt_.target_faces) : rep_.predicted_faces;
     if (opt_.max_aspect > 1 && count > 0) {
@@ -479,7 +498,8 @@ SimplifyReport Simplifier::run() {
         Index& refusals = verdict == Verdict::Topology ? rep_.refused_topology
                           : verdict == Verdict::Valence ? rep_.refused_valence
                           : verdict == Verdict::Geometry ? rep_.refused_geometry
-                                                         : rep_.refused_fitmap;
+                          : verdict == Verdict::Fitmap   ? rep_.refused_fitmap
+                                                         : rep_.refused_reach;
         ++refusals;
         continue;
       }
