@@ -45,13 +45,15 @@ struct SimplifyOptions {
   //! Automatic halting (adaptive mode without a face target): stop once the faces whose
   //! every diagonal collapse the other checks allow is refused by the M-fitmap (or the
   //! reach, below) cover this share of the surface more than before the first collapse
-  //! (measured over all faces, at steps of the face count that shrink to 1% near it). 1 runs on until no
-  //! feasible collapse remains (the paper's rule). Ours: with the paper's rule the
-  //! blocked parts stay put while the rest keeps coarsening, far past what the fitmap's
-  //! error balance asks (bunny: 248 quads, RMS 2.2x the uniform result at that count).
-  //! With 0.15 and square quads (max_aspect 1) the bunny, gargoyle and armadillo halt
-  //! within 10% of the paper's counts, the moai 15-35% below; with the pipeline's stretched
-  //! quads the bunny halts 22% above (828 quads against 681; bench/RESULTS.md).
+  //! (measured over all faces, at steps of the face count that shrink to 1% near it). 1
+  //! runs on until no feasible collapse remains (the paper's rule). Ours: with the paper's
+  //! rule the blocked parts stay put while the rest keeps coarsening, far past what the
+  //! fitmap's error balance asks (bunny: 248 quads, RMS 2.2x the uniform result at that
+  //! count). With 0.15 and square quads (max_aspect 1, no reach) the bunny, gargoyle and
+  //! armadillo halted within 10% of the paper's counts, the moai 15-35% below; with the
+  //! pipeline's stretched quads and reach the bunny halts 9-28% above (744 to 869 quads
+  //! over eight draws, against 681), the moai from 5% below to 18% above (89 to 111,
+  //! against 94; bench/RESULTS.md).
   double halt_share = 0.15;
   //! Adaptive mode: quads may be up to this many times longer along the surface's flatter
   //! direction than across its most curved one (fitmap/anisotropy.h; 1: as square as the
