@@ -74,7 +74,8 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "that cannot shrink to their share (scan debris) leave the result above it, and the log says so. "
        "Default: a tenth of the input's quads."},
       {kSimplify, "AutoHalt", "Automatic halting (adaptive)", ParamKind::Bool, 0, 0, 1,
-       "Adaptive mode only: ignore the target and stop once the faces whose collapses the M-fitmap refuses cover "
+       "Adaptive mode only: ignore the target and stop once the faces whose collapses the M-fitmap (or the reach "
+       "check, see the filter's help) refuses cover "
        "the halting share of the surface (the paper runs until none is allowed, which coarsens the rest far past "
        "its error balance). Where every remaining collapse is refused first (a noisy scan, a small mesh), it "
        "stops there, and the log says so."},

@@ -56,7 +56,8 @@ int main(int argc, char** argv) {
   s->add_option("-f,--faces", simp.faces, "target number of quads")->check(whole_number_from_one());
   s->add_flag("--adaptive", simp.adaptive, "adaptive mode driven by fitmaps");
   s->add_flag("--auto-halt", simp.auto_halt,
-              "adaptive: stop once the faces whose collapses the M-fitmap refuses cover --halt-share of the surface");
+              "adaptive: stop once the faces whose collapses the M-fitmap (or --reach) refuses cover --halt-share of the "
+              "surface");
   s->add_option("--tau", simp.tau, "adaptive: M-fitmap tolerance (share of inconsistent area)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   s->add_option("--m-factor", simp.m_factor, "adaptive: a face radius must stay below F_M / this")->capture_default_str()->check(number_above_zero());
   s->add_option("--halt-share", simp.halt_share,
