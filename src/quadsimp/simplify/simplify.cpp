@@ -171,18 +171,17 @@ Simplifier::Verdict Simplifier::check_grown_face(Index g, const Vec3* q) const {
   double radius = 0;
   for (int i = 0; i < 4; ++i) radius = std::max(radius, (q[i] - centre).norm());
   Index hint = centre_hint(g);
-  const double fm = sample_fitmap(opt_.fitmaps->m, centre, quad_normal(q[0], q[1], q[2], q[3]), hint);
-  if (radius * opt_.m_factor > fm) return Verdict::Fitmap;
-  if (reach_ > 0 && 2 * radius >= reach_ && !meets_input(g, q, centre)) return Verdict::Reach;
+  const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]);
+  if (radius * opt_.m_factor > sample_fitmap(opt_.fitmaps->m, centre, n, hint)) return Verdict::Fitmap;
+  if (reach_ > 0 && 2 * radius >= reach_ && !meets_input(g, q, centre, n)) return Verdict::Reach;
   return Verdict::Ok;
 }
 
 // SimplifyOptions::reach: rays from the centre and the edges' midpoints, as the
 // projectability measure casts them (metrics.h).
-bool Simplifier::meets_input(Index g, const Vec3* q, const Vec3& centre) const {
+bool Simplifier::meets_input(Index g, const Vec3* q, const Vec3& centre, const Vec3& n) const {
   for (Index i = 0; i < 4; ++i)
     if (m_.is_border_vertex(m_.vertex(g, i))) return true;  // its rays may pass through a hole
-  const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]);
   if (!ref_.ray_project(centre, n, reach_).found()) return false;
   for (int i = 0; i < 4; ++i)
     if (!ref_.ray_project(0.5 * (q[i] + q[(i + 1) % 4]), n, reach_).found()) return false;
