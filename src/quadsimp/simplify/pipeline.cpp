@@ -76,7 +76,7 @@ std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
          "pieces\"): there, " + refusals();
 }
 
-std::string defects_note(const QuadQuality& q) {
+std::string defects_note(const QuadQuality& q, Index beyond_reach) {
   std::string parts;
   const auto add = [&](Index n, const char* what) {
     if (n == 0) return;
@@ -85,6 +85,7 @@ std::string defects_note(const QuadQuality& q) {
   add(q.folded_faces, "folded (bent by more than 90 degrees)");
   add(q.flipped_faces, "flipped (facing against the input)");
   add(q.nonconvex_faces, "non-convex");
+  add(beyond_reach, "beyond the reach (missing the input along their normals)");
   if (parts.empty()) return {};
   std::string pieces;
   if (q.two_quad_pieces > 0)

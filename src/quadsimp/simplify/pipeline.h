@@ -49,8 +49,9 @@ std::string target_shortfall(const SimplifyReport& report, Index target_faces);
 //! measured, faces the way it does; otherwise one sentence for the log counting those that
 //! are not. Uniform runs unfold what they can at the end and adaptive runs refuse folds,
 //! but knife-edged parts and CAD solids of long triangles can leave some (README, Limits),
-//! and a user running a batch should hear of them without asking for statistics.
-std::string defects_note(const QuadQuality& quality);
+//! and a user running a batch should hear of them without asking for statistics. So
+//! should one whose adaptive result has faces beyond the reach (SimplifyReport::beyond_reach).
+std::string defects_note(const QuadQuality& quality, Index beyond_reach = 0);
 
 //! The operations a run did, for a summary line: "N collapses, M rotations", with the
 //! chord collapses between them when there were any.

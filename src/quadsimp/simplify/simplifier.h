@@ -83,7 +83,8 @@ class Simplifier {
   // Adaptive mode's checks on the faces a collapse grows: the M-fitmap, then the reach.
   Verdict check_grown_faces(Index f, Index k, const Vec3& pos) const;
   Verdict check_grown_face(Index g, const Vec3* q) const;
-  bool meets_input(Index g, const Vec3* q, const Vec3& centre, const Vec3& n) const;
+  bool beyond_reach(Index g, const Vec3* q) const;
+  Index count_beyond_reach() const;
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
   void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
   void after_change(const Index* first, const Index* last);

@@ -173,19 +173,39 @@ Simplifier::Verdict Simplifier::check_grown_face(Index g, const Vec3* q) const {
   Index hint = centre_hint(g);
   const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]);
   if (radius * opt_.m_factor > sample_fitmap(opt_.fitmaps->m, centre, n, hint)) return Verdict::Fitmap;
-  if (reach_ > 0 && 2 * radius >= reach_ && !meets_input(g, q, centre, n)) return Verdict::Reach;
-  return Verdict::Ok;
+  return beyond_reach(g, q) ? Verdict::Reach : Verdict::Ok;
 }
 
-// SimplifyOptions::reach: rays from the centre and the edges' midpoints, as the
-// projectability measure casts them (metrics.h).
-bool Simplifier::meets_input(Index g, const Vec3* q, const Vec3& centre, const Vec3& n) const {
+// SimplifyOptions::reach: whether face g with corners q is large and misses the input
+// from its centre or an edge's midpoint, as the projectability measure casts its rays
+// (metrics.h).
+bool Simplifier::beyond_reach(Index g, const Vec3* q) const {
+  if (!(reach_ > 0)) return false;
+  const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+  double radius2 = 0;
+  for (int i = 0; i < 4; ++i) radius2 = std::max(radius2, (q[i] - centre).squaredNorm());
+  if (4 * radius2 < reach_ * reach_) return false;  // within the reach of its corners, on M0
   for (Index i = 0; i < 4; ++i)
-    if (m_.is_border_vertex(m_.vertex(g, i))) return true;  // its rays may pass through a hole
-  if (!ref_.ray_project(centre, n, reach_).found()) return false;
+    if (m_.is_border_vertex(m_.vertex(g, i))) return false;  // its rays may pass through a hole
+  const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]);
+  if (!ref_.ray_project(centre, n, reach_).found()) return true;
   for (int i = 0; i < 4; ++i)
-    if (!ref_.ray_project(0.5 * (q[i] + q[(i + 1) % 4]), n, reach_).found()) return false;
-  return true;
+    if (!ref_.ray_project(0.5 * (q[i] + q[(i + 1) % 4]), n, reach_).found()) return true;
+  return false;
+}
+
+// The check sees each face where a collapse grows it; the rotations and smoothing moves
+// after it are not checked (checking them cost 10-23% more time, bench/RESULTS.md), so
+// the faces beyond the reach at the end are counted for the log.
+Index Simplifier::count_beyond_reach() const {
+  Index n = 0;
+  for (Index f = 0; f < m_.face_capacity(); ++f) {
+    if (!m_.is_face_live(f)) continue;
+    const auto c = m_.face_vertices(f);
+    const Vec3 q[4] = {m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3])};
+    n += beyond_reach(f, q);
+  }
+  return n;
 }
 
 void Simplifier::update_mu() {
@@ -539,6 +559,7 @@ SimplifyReport Simplifier::run() {
   for (std::size_t c = 0; c < share_.size(); ++c)
     if (double(piece_faces_[c]) > share_[c]) ++rep_.pieces_above_share, rep_.faces_above_share += piece_faces_[c];
   if (opt_.adaptive && !halted) rep_.blocked_share = blocked_share();
+  if (opt_.adaptive) rep_.beyond_reach = count_beyond_reach();
   rep_.ran_out = measure && !halted && !rep_.cancelled;
   if (opt_.unfold && !opt_.refuse_folds && !rep_.cancelled) unfold();
   if (opt_.check_invariants) check_invariants();

@@ -156,6 +156,9 @@ struct SimplifyReport {
   //! by the valence cap, by geometry (a fold or a convex face turned non-convex), by
   //! the M-fitmap, by the reach (adaptive mode).
   Index refused_topology = 0, refused_valence = 0, refused_geometry = 0, refused_fitmap = 0, refused_reach = 0;
+  //! Adaptive mode with a reach: faces of the result that fail its check (it is made where
+  //! collapses grow faces; rotations and smoothing after them can take a face out of reach).
+  Index beyond_reach = 0;
   //! Adaptive mode: share of the surface the M-fitmap (or the reach) blocked when the run ended.
   double blocked_share = 0;
   //! Automatic halting by share: the run ended because every remaining collapse was
