@@ -69,10 +69,11 @@ TriMesh sphere_with_far_triangle(int rings, int segments) {
 }
 
 // Adaptive mode driven by f.
-SimplifyOptions adaptive_options(const Fitmaps& f) {
+SimplifyOptions adaptive_options(const Fitmaps& f, Index target = 0) {
   SimplifyOptions opt;
   opt.adaptive = true;
   opt.fitmaps = &f;
+  opt.target_faces = target;
   return opt;
 }
 
@@ -81,8 +82,7 @@ SimplifyReport simplify_adaptive(const TriMesh& t, QuadMesh& q, Index target = 0
   const ReferenceSurface ref(t);
   q = tri_to_quad(t);
   const Fitmaps f = compute_fitmaps(t);
-  SimplifyOptions opt = adaptive_options(f);
-  opt.target_faces = target;
+  SimplifyOptions opt = adaptive_options(f, target);
   SimplifyReport r = simplify(q, ref, opt);
   validate(q);
   EXPECT_EQ(count_shared_diagonals(q), 0u);
@@ -280,8 +280,7 @@ TEST(Adaptive, m_fitmap_refuses_chord_collapses_too) {
   clean(t);
   const ReferenceSurface ref(t);
   Fitmaps f = compute_fitmaps(t);
-  SimplifyOptions opt = adaptive_options(f);
-  opt.target_faces = 15;
+  SimplifyOptions opt = adaptive_options(f, 15);
   auto run = [&](double fm) {
     std::fill(f.m.begin(), f.m.end(), float(fm));
     QuadMesh q = tri_to_quad(t);
@@ -523,8 +522,7 @@ TEST(Adaptive, keys_take_f_s_over_the_face_so_fine_noise_does_not_scatter_sizes)
     f.s[v] = float(0.2 + 1.6 * (h % 1000) / 999.0);
   }
   QuadMesh q = tri_to_quad(t);
-  SimplifyOptions opt = adaptive_options(f);
-  opt.target_faces = 300;
+  SimplifyOptions opt = adaptive_options(f, 300);
   simplify(q, ref, opt);
   validate(q);
   double sum = 0, sum2 = 0;
@@ -604,8 +602,7 @@ TEST(Adaptive, quads_grow_long_along_a_torus_and_come_out_closer) {
   };
   auto run = [&](double max_aspect) {
     QuadMesh q = tri_to_quad(t);
-    SimplifyOptions opt = adaptive_options(f);
-    opt.target_faces = 300;
+    SimplifyOptions opt = adaptive_options(f, 300);
     opt.refuse_folds = true;
     opt.max_aspect = max_aspect;
     simplify(q, ref, opt);
@@ -643,8 +640,7 @@ TEST(Adaptive, reach_refuses_faces_that_would_leave_the_input) {
   std::fill(f.m.begin(), f.m.end(), 1e3f);
   auto run = [&](double reach) {
     QuadMesh q = tri_to_quad(t);
-    SimplifyOptions opt = adaptive_options(f);
-    opt.target_faces = 6;
+    SimplifyOptions opt = adaptive_options(f, 6);
     opt.reach = reach;
     opt.check_invariants = true;
     const SimplifyReport r = simplify(q, ref, opt);
@@ -710,8 +706,7 @@ TEST(Adaptive, reach_is_not_checked_beside_holes) {
   Fitmaps f = compute_fitmaps(in.reference);
   std::fill(f.m.begin(), f.m.end(), 1e3f);
   QuadMesh q = in.quads;
-  SimplifyOptions opt = adaptive_options(f);
-  opt.target_faces = 300;
+  SimplifyOptions opt = adaptive_options(f, 300);
   opt.reach = 0.045;
   const SimplifyReport r = simplify(q, ref, opt);
   validate(q);
