@@ -49,7 +49,10 @@ Anisotropy compute_anisotropy(const TriMesh& t, const std::vector<std::array<Ind
     const double area = 0.5 * n.norm();
     NormalMoments& m = cell[grid.cell_of_triangle[f]];
     m.area += area, m.first += area * centroid[f], m.normal += 0.5 * n;
-    if (area > 0) m.second += area * n.normalized() * n.normalized().transpose();
+    if (area > 0) {
+      const Vec3 u = n.normalized();
+      m.second += area * u * u.transpose();
+    }
   }
   std::vector<Vec3> centre(nc);
   for (Index c = 0; c < nc; ++c) centre[c] = cell[c].first / std::max(cell[c].area, 1e-300);

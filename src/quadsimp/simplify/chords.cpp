@@ -121,12 +121,9 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
       ++rep_.refused_geometry;
       return false;
     }
-    if (opt_.adaptive) {  // the enlarged faces, as for a diagonal collapse
-      const Verdict v = check_grown_face(g, q);
-      if (v != Verdict::Ok) {
-        ++(v == Verdict::Fitmap ? rep_.refused_fitmap : rep_.refused_reach);
-        return false;
-      }
+    if (const Verdict v = opt_.adaptive ? check_grown_face(g, q) : Verdict::Ok; v != Verdict::Ok) {
+      count_refusal(v);  // the enlarged faces, as for a diagonal collapse
+      return false;
     }
   }
   collapse_chord(m_, chord, chord_pos_);

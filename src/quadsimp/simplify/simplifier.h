@@ -83,8 +83,15 @@ class Simplifier {
   // Adaptive mode's checks on the faces a collapse grows: the M-fitmap, then the reach.
   Verdict check_grown_faces(Index f, Index k, const Vec3& pos) const;
   Verdict check_grown_face(Index g, const Vec3* q) const;
-  bool beyond_reach(Index g, const Vec3* q) const;
+  // A quad's centre (corner mean), normal and radius (largest centre-to-corner distance).
+  struct QuadShape {
+    Vec3 centre, normal;
+    double radius;
+  };
+  static QuadShape shape_of(const Vec3* q);
+  bool beyond_reach(Index g, const Vec3* q, const QuadShape& s) const;
   Index count_beyond_reach() const;
+  void count_refusal(Verdict v);  // the report's count for a verdict other than Ok
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
   void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
   void after_change(const Index* first, const Index* last);

@@ -164,46 +164,55 @@ Simplifier::Verdict Simplifier::check_grown_faces(Index f, Index k, const Vec3& 
   return v;
 }
 
-// Face g with corners q: [paper 3.3] its radius (largest centre-to-corner distance) at
-// most F_M at its centre; then ours, the input within reach along its normal.
-Simplifier::Verdict Simplifier::check_grown_face(Index g, const Vec3* q) const {
-  const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
-  double radius = 0;
-  for (int i = 0; i < 4; ++i) radius = std::max(radius, (q[i] - centre).norm());
-  Index hint = centre_hint(g);
-  const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]);
-  if (radius * opt_.m_factor > sample_fitmap(opt_.fitmaps->m, centre, n, hint)) return Verdict::Fitmap;
-  return beyond_reach(g, q) ? Verdict::Reach : Verdict::Ok;
+Simplifier::QuadShape Simplifier::shape_of(const Vec3* q) {
+  QuadShape s{0.25 * (q[0] + q[1] + q[2] + q[3]), quad_normal(q[0], q[1], q[2], q[3]), 0.0};
+  for (int i = 0; i < 4; ++i) s.radius = std::max(s.radius, (q[i] - s.centre).norm());
+  return s;
 }
 
-// SimplifyOptions::reach: whether face g with corners q is large and misses the input
-// from its centre or an edge's midpoint, as the projectability measure casts its rays
-// (metrics.h).
-bool Simplifier::beyond_reach(Index g, const Vec3* q) const {
-  if (!(reach_ > 0)) return false;
-  const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
-  double radius2 = 0;
-  for (int i = 0; i < 4; ++i) radius2 = std::max(radius2, (q[i] - centre).squaredNorm());
-  if (4 * radius2 < reach_ * reach_) return false;  // within the reach of its corners, on M0
+// Face g with corners q: [paper 3.3] its radius at most F_M at its centre; then ours,
+// the input within reach along its normal.
+Simplifier::Verdict Simplifier::check_grown_face(Index g, const Vec3* q) const {
+  const QuadShape s = shape_of(q);
+  Index hint = centre_hint(g);
+  if (s.radius * opt_.m_factor > sample_fitmap(opt_.fitmaps->m, s.centre, s.normal, hint)) return Verdict::Fitmap;
+  return beyond_reach(g, q, s) ? Verdict::Reach : Verdict::Ok;
+}
+
+// SimplifyOptions::reach: whether face g with corners q (shape s) is large and misses the
+// input from its centre or an edge's midpoint, as the projectability measure casts its
+// rays (metrics.h).
+bool Simplifier::beyond_reach(Index g, const Vec3* q, const QuadShape& s) const {
+  if (!(reach_ > 0) || 2 * s.radius < reach_) return false;  // within the reach of its corners, on M0
   for (Index i = 0; i < 4; ++i)
     if (m_.is_border_vertex(m_.vertex(g, i))) return false;  // its rays may pass through a hole
-  const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]);
-  if (!ref_.ray_project(centre, n, reach_).found()) return true;
+  if (!ref_.ray_project(s.centre, s.normal, reach_).found()) return true;
   for (int i = 0; i < 4; ++i)
-    if (!ref_.ray_project(0.5 * (q[i] + q[(i + 1) % 4]), n, reach_).found()) return true;
+    if (!ref_.ray_project(0.5 * (q[i] + q[(i + 1) % 4]), s.normal, reach_).found()) return true;
   return false;
 }
 
 // The check sees each face where a collapse grows it; the rotations and smoothing moves
 // after it are not checked (checking them cost 10-23% more time, bench/RESULTS.md), so
 // the faces beyond the reach at the end are counted for the log.
+void Simplifier::count_refusal(Verdict v) {
+  switch (v) {
+    case Verdict::Topology: ++rep_.refused_topology; break;
+    case Verdict::Valence: ++rep_.refused_valence; break;
+    case Verdict::Geometry: ++rep_.refused_geometry; break;
+    case Verdict::Fitmap: ++rep_.refused_fitmap; break;
+    case Verdict::Reach: ++rep_.refused_reach; break;
+    case Verdict::Ok: break;
+  }
+}
+
 Index Simplifier::count_beyond_reach() const {
   Index n = 0;
   for (Index f = 0; f < m_.face_capacity(); ++f) {
     if (!m_.is_face_live(f)) continue;
     const auto c = m_.face_vertices(f);
     const Vec3 q[4] = {m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3])};
-    n += beyond_reach(f, q);
+    n += beyond_reach(f, q, shape_of(q));
   }
   return n;
 }
@@ -514,12 +523,7 @@ SimplifyReport Simplifier::run() {
       // A refused face comes back only when something around it changes.
       const Verdict verdict = check_collapse(e.face, e.k, pos, foot);
       if (verdict != Verdict::Ok) {
-        Index& refusals = verdict == Verdict::Topology ? rep_.refused_topology
-                          : verdict == Verdict::Valence ? rep_.refused_valence
-                          : verdict == Verdict::Geometry ? rep_.refused_geometry
-                          : verdict == Verdict::Fitmap   ? rep_.refused_fitmap
-                                                         : rep_.refused_reach;
-        ++refusals;
+        count_refusal(verdict);
         continue;
       }
       cycle(e.face, e.k, pos, foot);
