@@ -113,6 +113,7 @@ int run_simplify(const SimplifyArgs& a) {
   params.auto_halt = a.auto_halt;
   params.tau = a.tau;
   params.m_factor = a.m_factor;
+  params.m_slack = a.m_slack;
   params.halt_share = a.halt_share;
   params.max_aspect = a.max_aspect;
   params.reach = a.reach;

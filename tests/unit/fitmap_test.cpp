@@ -68,6 +68,14 @@ TriMesh sphere_with_far_triangle(int rings, int segments) {
   return t;
 }
 
+// The fitmaps of a unit sphere with F_M from 1 mu at its bottom to 5 mu at its top: as
+// its faces grow, the M-fitmap blocks them from the bottom up.
+Fitmaps graded_m(const TriMesh& sphere, double mu) {
+  Fitmaps f = compute_fitmaps(sphere);
+  for (Index v = 0; v < sphere.n_vertices(); ++v) f.m[v] = float((3 + 2 * sphere.positions[v].z()) * mu);
+  return f;
+}
+
 // Adaptive mode driven by f.
 SimplifyOptions adaptive_options(const Fitmaps& f, Index target = 0) {
   SimplifyOptions opt;
@@ -307,14 +315,11 @@ TEST(Adaptive, auto_halt_terminates) {
 }
 
 TEST(Adaptive, auto_halt_stops_once_the_m_fitmap_blocks_its_share) {
-  // F_M grows from 1 mu at the sphere's bottom to 5 mu at its top, so as the faces grow
-  // the M-fitmap blocks them from the bottom up and the blocked share rises steadily.
+  // F_M graded up the sphere (graded_m()): the blocked share rises steadily.
   TriMesh t = tri_sphere(30, 40);
   clean(t);
   const ReferenceSurface ref(t);
-  Fitmaps f = compute_fitmaps(t);
-  for (Index v = 0; v < t.n_vertices(); ++v)
-    f.m[v] = float((3 + 2 * t.positions[v].z()) * ref.mean_edge_length());
+  const Fitmaps f = graded_m(t, ref.mean_edge_length());
   auto run = [&](double share, Index target, QuadMesh& q) {
     q = tri_to_quad(t);
     SimplifyOptions opt = adaptive_options(f);
@@ -366,6 +371,43 @@ TEST(Adaptive, auto_halt_counts_only_the_share_the_collapses_block) {
   // run stopped after its first collapse.
   EXPECT_GT(r.collapses, before / 10);
   EXPECT_GT(r.blocked_share, 0.25);
+}
+
+TEST(Adaptive, slack_loosens_the_loop_but_halting_measures_the_bound_itself) {
+  // The sphere of auto_halt_stops_once_the_m_fitmap_blocks_its_share. A slack of 1.25
+  // over F_M and a bound of F_M / 0.8 without slack refuse the same collapses, so to a
+  // face target they give the same mesh; halted automatically, the first measures the
+  // blocked share at F_M, which its faces reach first, and stops with more quads.
+  TriMesh t = tri_sphere(30, 40);
+  clean(t);
+  const ReferenceSurface ref(t);
+  const Fitmaps f = graded_m(t, ref.mean_edge_length());
+  auto run = [&](double m_factor, double m_slack, Index target, QuadMesh& q) {
+    q = tri_to_quad(t);
+    SimplifyOptions opt = adaptive_options(f, target);
+    opt.m_factor = m_factor;
+    opt.m_slack = m_slack;
+    opt.halt_share = 0.3;
+    opt.fine_phase = 0;
+    const SimplifyReport r = simplify(q, ref, opt);
+    validate(q);
+    return r;
+  };
+  QuadMesh slack, looser, paper;
+  const SimplifyReport with_slack = run(1.0, 1.25, 0, slack);
+  const SimplifyReport with_looser_bound = run(0.8, 1.0, 0, looser);
+  run(1.0, 1.0, 0, paper);
+  EXPECT_FALSE(with_slack.ran_out);
+  EXPECT_FALSE(with_looser_bound.ran_out);
+  EXPECT_GE(with_slack.blocked_share, 0.3);
+  EXPECT_GT(slack.n_faces(), looser.n_faces());
+  // Past the bound: the slack's faces are larger than the paper's bound lets them be.
+  EXPECT_LT(slack.n_faces(), paper.n_faces());
+  QuadMesh a, b;
+  run(1.0, 1.25, slack.n_faces(), a);
+  run(0.8, 1.0, slack.n_faces(), b);
+  ASSERT_EQ(a.n_faces(), b.n_faces());
+  for (Index v = 0; v < a.vertex_capacity(); ++v) EXPECT_EQ(a.position(v), b.position(v));
 }
 
 TEST(Adaptive, no_quad_bends_over_the_gargoyles_thin_parts) {
@@ -661,33 +703,36 @@ TEST(Adaptive, reach_refuses_faces_that_would_leave_the_input) {
 
 TEST(Adaptive, automatic_halting_keeps_the_moai_projectable) {
   // The moai is smooth: its M-fitmap blocks little, and without the reach automatic
-  // halting stopped at 63 quads, parts of which were more than 5% of the diagonal off
-  // it (97.3% projectable).
+  // halting stopped at 63 quads at the paper's bound, parts of which were more than 5% of
+  // the diagonal off it (97.3% projectable). With the pipeline's slack the file itself
+  // stays 99.7% projectable without the reach (67 quads), a re-rounded copy of it 98.0%
+  // (bench/RESULTS.md): the check is shown where this file needs it, at the bound.
   const std::string path = shared_dataset("moai");
   if (path.empty()) GTEST_SKIP() << "../shared/datasets not found";
   const Input in = load_input(path);
   const ReferenceSurface ref(in.reference);
-  auto run = [&](double reach, double halt_share) {
+  auto run = [&](double reach, double halt_share, double m_slack) {
     SimplifyParams params;
     params.adaptive = params.auto_halt = true;
     params.reach = reach;
     params.halt_share = halt_share;
+    params.m_slack = m_slack;
     Input out = in;
     const SimplifyReport r = simplify_input(out, ref, params);
     const double projectable = surface_distance(out.quads, ref, 300000).projectability;
-    std::cout << "reach " << reach << ", halting share " << halt_share << ": " << r.faces << " quads, "
-              << r.beyond_reach << " beyond the reach, projectable " << projectable << "\n";
+    std::cout << "reach " << reach << ", halting share " << halt_share << ", slack " << m_slack << ": " << r.faces
+              << " quads, " << r.beyond_reach << " beyond the reach, projectable " << projectable << "\n";
     return std::make_pair(r, projectable);
   };
-  const double share = SimplifyParams().halt_share;
-  const auto [r, projectable] = run(SimplifyParams().reach, share);
+  const SimplifyParams defaults;
+  const auto [r, projectable] = run(defaults.reach, defaults.halt_share, defaults.m_slack);
   EXPECT_GE(projectable, 0.995);
-  EXPECT_EQ(r.beyond_reach, 0u);
-  EXPECT_LT(run(0.0, share).second, 0.99);  // the check is what keeps it
-  // Run on by the paper's rule, the faces the check let through (rotations and smoothing
-  // after the collapses are not checked) are counted, and the log's note says so.
-  const SimplifyReport paper = run(SimplifyParams().reach, 1.0).first;
-  EXPECT_GT(paper.beyond_reach, 0u);
+  EXPECT_GE(run(defaults.reach, defaults.halt_share, 1.0).second, 0.995);
+  EXPECT_LT(run(0.0, defaults.halt_share, 1.0).second, 0.99);  // the check is what keeps it
+  // Run on by the paper's rule, more faces are let through (rotations and smoothing after
+  // the collapses are not checked); they are counted, and the log's note says so.
+  const SimplifyReport paper = run(defaults.reach, 1.0, defaults.m_slack).first;
+  EXPECT_GT(paper.beyond_reach, r.beyond_reach);
   EXPECT_NE(defects_note(QuadQuality{}, paper.beyond_reach).find(" beyond the reach "), std::string::npos);
 }
 

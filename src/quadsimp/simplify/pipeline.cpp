@@ -17,6 +17,7 @@ std::string check_params(const SimplifyParams& p) {
   if (p.adaptive && !p.auto_halt && p.target_faces == 0) return "the adaptive mode needs a target number of faces or automatic halting";
   if (!(p.tau > 0 && p.tau < 1)) return "tau must be between 0 and 1";
   if (!(p.m_factor > 0)) return "the M-fitmap factor must be positive";
+  if (!(p.m_slack >= 1)) return "the M-fitmap slack must be at least 1";
   if (!(p.halt_share > 0 && p.halt_share <= 1)) return "the halting share must be in (0, 1]";
   if (!(p.max_aspect >= 1)) return "the largest aspect must be at least 1";
   if (!(p.reach >= 0 && p.reach <= 1)) return "the reach must be in [0, 1]";
@@ -41,6 +42,7 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
     opt.refuse_folds = true;
     opt.fitmaps = &fitmaps;
     opt.m_factor = p.m_factor;
+    opt.m_slack = p.m_slack;
     opt.halt_share = p.halt_share;
     opt.max_aspect = p.max_aspect;
     opt.reach = p.reach;

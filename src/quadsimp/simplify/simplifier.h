@@ -69,9 +69,13 @@ class Simplifier {
   double target_size(double s) const { return std::clamp(s_mid_ / std::max(s, kLeastS), 0.5, 2.0); }
   // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
   // once it passes the topology and valence checks. The loop and blocked_share() both
-  // ask here, so that the halting measure sees exactly the collapses the loop would do.
+  // ask here, so that the halting measure sees the collapses the loop would do, but held
+  // at the M-fitmap's bound itself (SimplifyOptions::m_slack).
   enum class Verdict { Topology, Valence, Geometry, Fitmap, Reach, Ok };
-  Verdict check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
+  // Whose M-fitmap bound a check applies: the loop's, with SimplifyOptions::m_slack, or
+  // the bound itself, where automatic halting measures the blocked share.
+  enum class Bound { Loop, Halting };
+  Verdict check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot, Bound bound = Bound::Loop) const;
   bool touches_kept_border(Index f, Index k) const {
     return opt_.preserve_boundary && (m_.is_border_vertex(m_.vertex(f, k)) || m_.is_border_vertex(m_.vertex(f, k + 2)));
   }
@@ -81,8 +85,8 @@ class Simplifier {
   }
   bool place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
   // Adaptive mode's checks on the faces a collapse grows: the M-fitmap, then the reach.
-  Verdict check_grown_faces(Index f, Index k, const Vec3& pos) const;
-  Verdict check_grown_face(Index g, const Vec3* q) const;
+  Verdict check_grown_faces(Index f, Index k, const Vec3& pos, Bound bound) const;
+  Verdict check_grown_face(Index g, const Vec3* q, Bound bound = Bound::Loop) const;
   // A quad's centre (corner mean), normal and radius (largest centre-to-corner distance).
   struct QuadShape {
     Vec3 centre, normal;

@@ -146,19 +146,19 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
   return false;
 }
 
-Simplifier::Verdict Simplifier::check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
+Simplifier::Verdict Simplifier::check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot, Bound bound) const {
   if (!can_collapse_diagonal(m_, f, k) || touches_kept_border(f, k)) return Verdict::Topology;
   if (exceeds_valence(f, k)) return Verdict::Valence;
   if (!place(f, k, pos, foot)) return Verdict::Geometry;
-  return opt_.adaptive ? check_grown_faces(f, k, pos) : Verdict::Ok;
+  return opt_.adaptive ? check_grown_faces(f, k, pos, bound) : Verdict::Ok;
 }
 
 // The faces a collapse grows are those around a and c after the merge, with the
 // survivor at `pos`; the first one refused gives the verdict.
-Simplifier::Verdict Simplifier::check_grown_faces(Index f, Index k, const Vec3& pos) const {
+Simplifier::Verdict Simplifier::check_grown_faces(Index f, Index k, const Vec3& pos, Bound bound) const {
   Verdict v = Verdict::Ok;
   for_each_face_after_collapse(m_, f, k, pos, [&](Index g, const Vec3* q) {
-    v = check_grown_face(g, q);
+    v = check_grown_face(g, q, bound);
     return v == Verdict::Ok;
   });
   return v;
@@ -172,10 +172,11 @@ Simplifier::QuadShape Simplifier::shape_of(const Vec3* q) {
 
 // Face g with corners q: [paper 3.3] its radius at most F_M at its centre; then ours,
 // the input within reach along its normal.
-Simplifier::Verdict Simplifier::check_grown_face(Index g, const Vec3* q) const {
+Simplifier::Verdict Simplifier::check_grown_face(Index g, const Vec3* q, Bound bound) const {
   const QuadShape s = shape_of(q);
   Index hint = centre_hint(g);
-  if (s.radius * opt_.m_factor > sample_fitmap(opt_.fitmaps->m, s.centre, s.normal, hint)) return Verdict::Fitmap;
+  const double factor = bound == Bound::Loop ? opt_.m_factor / opt_.m_slack : opt_.m_factor;
+  if (s.radius * factor > sample_fitmap(opt_.fitmaps->m, s.centre, s.normal, hint)) return Verdict::Fitmap;
   return beyond_reach(g, q, s) ? Verdict::Reach : Verdict::Ok;
 }
 
@@ -287,6 +288,8 @@ double Simplifier::predicted_halt() const {
 // the loop (the fifth to tenth stops' rule) drops a face whenever a neighbour's collapse
 // moves it, so its share was noisy and about a third of this one, and where it first
 // crossed its threshold was decided by rounding (bench/RESULTS.md).
+// The M-fitmap refuses here at its bound, not at the loop's slack past it: the loop's
+// faces may pass the bound, and where they do the surface counts as blocked.
 // check_collapse() only reads, so the faces are judged in parallel (a seventh of the
 // adaptive bunny's loop, judged one by one); the areas are summed in face order, so the
 // share, and where the run halts, do not depend on the threads.
@@ -299,7 +302,7 @@ double Simplifier::blocked_share() {
       for (Index k = 0; k < 2 && !allowed; ++k) {
         Vec3 pos;
         SurfacePoint foot;
-        const Verdict v = check_collapse(f, k, pos, foot);
+        const Verdict v = check_collapse(f, k, pos, foot, Bound::Halting);
         allowed = v == Verdict::Ok;
         refused |= v == Verdict::Fitmap || v == Verdict::Reach;
       }
