@@ -59,7 +59,9 @@ int main(int argc, char** argv) {
               "adaptive: stop once the faces whose collapses the M-fitmap (or --reach) refuses cover --halt-share of the "
               "surface");
   s->add_option("--tau", simp.tau, "adaptive: M-fitmap tolerance (share of inconsistent area)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
-  s->add_option("--m-factor", simp.m_factor, "adaptive: the M-fitmap's bound on a face radius is F_M / this (see --m-slack)")->capture_default_str()->check(number_above_zero());
+  s->add_option("--m-factor", simp.m_factor, "adaptive: the M-fitmap's bound on a face radius is F_M / this (see --m-slack)")
+      ->capture_default_str()
+      ->check(number_above_zero());
   s->add_option("--m-slack", simp.m_slack,
                 "adaptive: collapses may grow a face up to this times the M-fitmap's bound; --auto-halt still measures "
                 "where faces reach the bound itself (1: the paper's)")
