@@ -121,7 +121,7 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
       ++rep_.refused_geometry;
       return false;
     }
-    if (const Verdict v = opt_.adaptive ? check_grown_face(g, q) : Verdict::Ok; v != Verdict::Ok) {
+    if (const Verdict v = opt_.adaptive ? check_grown_face(g, q, Bound::Loop) : Verdict::Ok; v != Verdict::Ok) {
       count_refusal(v);  // the enlarged faces, as for a diagonal collapse
       return false;
     }

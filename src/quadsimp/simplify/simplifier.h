@@ -75,7 +75,7 @@ class Simplifier {
   // Whose M-fitmap bound a check applies: the loop's, with SimplifyOptions::m_slack, or
   // the bound itself, where automatic halting measures the blocked share.
   enum class Bound { Loop, Halting };
-  Verdict check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot, Bound bound = Bound::Loop) const;
+  Verdict check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot, Bound bound) const;
   bool touches_kept_border(Index f, Index k) const {
     return opt_.preserve_boundary && (m_.is_border_vertex(m_.vertex(f, k)) || m_.is_border_vertex(m_.vertex(f, k + 2)));
   }
@@ -86,7 +86,7 @@ class Simplifier {
   bool place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
   // Adaptive mode's checks on the faces a collapse grows: the M-fitmap, then the reach.
   Verdict check_grown_faces(Index f, Index k, const Vec3& pos, Bound bound) const;
-  Verdict check_grown_face(Index g, const Vec3* q, Bound bound = Bound::Loop) const;
+  Verdict check_grown_face(Index g, const Vec3* q, Bound bound) const;
   // A quad's centre (corner mean), normal and radius (largest centre-to-corner distance).
   struct QuadShape {
     Vec3 centre, normal;

@@ -524,7 +524,7 @@ SimplifyReport Simplifier::run() {
       Vec3 pos;
       SurfacePoint foot;
       // A refused face comes back only when something around it changes.
-      const Verdict verdict = check_collapse(e.face, e.k, pos, foot);
+      const Verdict verdict = check_collapse(e.face, e.k, pos, foot, Bound::Loop);
       if (verdict != Verdict::Ok) {
         count_refusal(verdict);
         continue;
