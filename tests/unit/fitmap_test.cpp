@@ -407,6 +407,7 @@ TEST(Adaptive, slack_loosens_the_loop_but_halting_measures_the_bound_itself) {
   run(1.0, 1.25, slack.n_faces(), a);
   run(0.8, 1.0, slack.n_faces(), b);
   ASSERT_EQ(a.n_faces(), b.n_faces());
+  ASSERT_EQ(a.vertex_capacity(), b.vertex_capacity());
   for (Index v = 0; v < a.vertex_capacity(); ++v) EXPECT_EQ(a.position(v), b.position(v));
 }
 
