@@ -67,14 +67,14 @@ class Simplifier {
   // single mu. clamped_s() keeps F_S within the same bound; this one holds without the
   // clamp (s_percentiles 0).
   double target_size(double s) const { return std::clamp(s_mid_ / std::max(s, kLeastS), 0.5, 2.0); }
-  // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
-  // once it passes the topology and valence checks. The loop and blocked_share() both
-  // ask here, so that the halting measure sees the collapses the loop would do, but held
-  // at the M-fitmap's bound itself (SimplifyOptions::m_slack).
   enum class Verdict { Topology, Valence, Geometry, Fitmap, Reach, Ok };
   // Whose M-fitmap bound a check applies: the loop's, with SimplifyOptions::m_slack, or
   // the bound itself, where automatic halting measures the blocked share.
   enum class Bound { Loop, Halting };
+  // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
+  // once it passes the topology and valence checks. The loop and blocked_share() both
+  // ask here, so that the halting measure sees the collapses the loop would do, but held
+  // at the M-fitmap's bound itself.
   Verdict check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot, Bound bound) const;
   bool touches_kept_border(Index f, Index k) const {
     return opt_.preserve_boundary && (m_.is_border_vertex(m_.vertex(f, k)) || m_.is_border_vertex(m_.vertex(f, k + 2)));

@@ -193,9 +193,6 @@ bool Simplifier::beyond_reach(Index g, const Vec3* q, const QuadShape& s) const 
   return false;
 }
 
-// The check sees each face where a collapse grows it; the rotations and smoothing moves
-// after it are not checked (checking them cost 10-23% more time, bench/RESULTS.md), so
-// the faces beyond the reach at the end are counted for the log.
 void Simplifier::count_refusal(Verdict v) {
   switch (v) {
     case Verdict::Topology: ++rep_.refused_topology; break;
@@ -207,6 +204,9 @@ void Simplifier::count_refusal(Verdict v) {
   }
 }
 
+// The check sees each face where a collapse grows it; the rotations and smoothing moves
+// after it are not checked (checking them cost 10-23% more time, bench/RESULTS.md), so
+// the faces beyond the reach at the end are counted for the log.
 Index Simplifier::count_beyond_reach() const {
   Index n = 0;
   for (Index f = 0; f < m_.face_capacity(); ++f) {
