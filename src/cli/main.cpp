@@ -72,8 +72,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   s->add_option("--max-aspect", simp.max_aspect,
-                "adaptive: how much longer than wide quads may grow along the flatter direction "
-                "(1: square quads, the paper's)")
+                "adaptive: how much longer than wide quads may grow along the flatter direction, and as much "
+                "further past the M-fitmap's bound there (1: square quads and the paper's bound)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
   s->add_option("--reach", simp.reach,

@@ -68,8 +68,9 @@ class Simplifier {
   // clamp (s_percentiles 0).
   double target_size(double s) const { return std::clamp(s_mid_ / std::max(s, kLeastS), 0.5, 2.0); }
   enum class Verdict { Topology, Valence, Geometry, Fitmap, Reach, Ok };
-  // Whose M-fitmap bound a check applies: the loop's, with SimplifyOptions::m_slack, or
-  // the bound itself, where automatic halting measures the blocked share.
+  // Whose M-fitmap bound a check applies: the loop's, with SimplifyOptions::m_slack and,
+  // with anisotropy, the radius along the stretch (bound_radius()), or the paper's bound
+  // itself, where automatic halting measures the blocked share.
   enum class Bound { Loop, Halting };
   // The first check a diagonal collapse fails, in order, or Ok; pos and foot are set
   // once it passes the topology and valence checks. The loop and blocked_share() both
@@ -93,6 +94,7 @@ class Simplifier {
     double radius;
   };
   static QuadShape shape_of(const Vec3* q);
+  double bound_radius(Index g, const Vec3* q, const QuadShape& s, Bound bound) const;
   bool beyond_reach(Index g, const Vec3* q, const QuadShape& s) const;
   Index count_beyond_reach() const;
   void count_refusal(Verdict v);  // the report's count for a verdict other than Ok
@@ -113,16 +115,23 @@ class Simplifier {
     if (!anisotropy_.empty())
       for (int k = 0; k < 6; ++k) metric_[v][k] = float(ref_.interpolate(anisotropy_.g[k], s));
   }
-  // d^T G d, G the mean of u's and v's metrics (with anisotropy): d's squared length
-  // under the metric, which springs and diagonals between u and v are measured by.
-  double metric_length2(Index u, Index v, const Vec3& d) const {
-    const auto& a = metric_[u];
-    const auto& b = metric_[v];
-    const double xx = a[0] + b[0], xy = a[1] + b[1], xz = a[2] + b[2], yy = a[3] + b[3], yz = a[4] + b[4],
-                 zz = a[5] + b[5];
-    return 0.5 * (xx * d.x() * d.x() + yy * d.y() * d.y() + zz * d.z() * d.z()) +
-           xy * d.x() * d.y() + xz * d.x() * d.z() + yz * d.y() * d.z();
+  using Metric = std::array<double, 6>;  // symmetric: xx, xy, xz, yy, yz, zz
+  // The mean of the metrics under the given vertices (with anisotropy).
+  Metric mean_metric(std::initializer_list<Index> vertices) const {
+    Metric g{};
+    for (Index v : vertices)
+      for (int k = 0; k < 6; ++k) g[k] += metric_[v][k];
+    const double w = 1.0 / double(vertices.size());  // exact for two and four vertices
+    for (double& x : g) x *= w;
+    return g;
   }
+  // d^T G d: d's squared length under G.
+  static double length2_under(const Metric& g, const Vec3& d) {
+    return g[0] * d.x() * d.x() + g[3] * d.y() * d.y() + g[5] * d.z() * d.z() +
+           2 * (g[1] * d.x() * d.y() + g[2] * d.x() * d.z() + g[4] * d.y() * d.z());
+  }
+  // d's squared length under the mean of u's and v's metrics, which springs are measured by.
+  double metric_length2(Index u, Index v, const Vec3& d) const { return length2_under(mean_metric({u, v}), d); }
   void update_mu();
   // The mean edge of v's connected component: what its springs and the thresholds
   // scaled by the edge length use. With one mu for all, a part too small to hold quads

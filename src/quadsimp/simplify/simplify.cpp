@@ -90,9 +90,9 @@ void Simplifier::append_entries(Index f) {
     if (anisotropy_.empty()) {
       length = norm_of_diagonal(m_, f, k);
     } else {
-      const Vec3 d = m_.position(m_.vertex(f, k)) - m_.position(m_.vertex(f, k + 2));
-      length = std::sqrt(0.5 * (metric_length2(m_.vertex(f, k), m_.vertex(f, k + 2), d) +
-                                metric_length2(m_.vertex(f, k + 1), m_.vertex(f, k + 3), d)));
+      const auto c = m_.face_vertices(f);
+      const Metric g = mean_metric({c[0], c[1], c[2], c[3]});
+      length = std::sqrt(length2_under(g, m_.position(c[k]) - m_.position(c[k + 2])));
     }
     heap_.push_back({float(length * scale), f, version_[f], k});
   }
@@ -176,8 +176,29 @@ Simplifier::Verdict Simplifier::check_grown_face(Index g, const Vec3* q, Bound b
   const QuadShape s = shape_of(q);
   Index hint = centre_hint(g);
   const double factor = bound == Bound::Loop ? opt_.m_factor / opt_.m_slack : opt_.m_factor;
-  if (s.radius * factor > sample_fitmap(opt_.fitmaps->m, s.centre, s.normal, hint)) return Verdict::Fitmap;
+  if (bound_radius(g, q, s, bound) * factor > sample_fitmap(opt_.fitmaps->m, s.centre, s.normal, hint))
+    return Verdict::Fitmap;
   return beyond_reach(g, q, s) ? Verdict::Reach : Verdict::Ok;
+}
+
+// The radius the M-fitmap bounds: the paper's, s.radius, but in the loop with anisotropy
+// (ours) the corners' distances from the centre under the corners' mean metric over its
+// stretch s: across the most curved direction a face keeps the paper's bound, along the
+// flatter one, where the surface's normal turns less, it may reach s times as far, the
+// aspect the springs give it. With the paper's radius there, the bound held the stretched
+// quads of thin parts (fingers, ears) at their short side's size (bench/RESULTS.md,
+// "The M-fitmap's bound along the stretch"). The halting measure keeps the paper's radius,
+// as it keeps the paper's bound past the slack.
+double Simplifier::bound_radius(Index g, const Vec3* q, const QuadShape& s, Bound bound) const {
+  if (anisotropy_.empty() || bound == Bound::Halting) return s.radius;
+  const auto c = m_.face_vertices(g);
+  const Metric G = mean_metric({c[0], c[1], c[2], c[3]});
+  // G's eigenvalues are s, 1/s and 1 (along the normal), so its trace is s + 1/s + 1.
+  const double t = G[0] + G[3] + G[5] - 1;
+  const double stretch = std::max(1.0, 0.5 * (t + std::sqrt(std::max(0.0, t * t - 4))));
+  double r2 = 0;
+  for (int i = 0; i < 4; ++i) r2 = std::max(r2, length2_under(G, q[i] - s.centre));
+  return std::sqrt(r2 / stretch);
 }
 
 // SimplifyOptions::reach: whether face g with corners q (shape s) is large and misses the

@@ -75,7 +75,10 @@ struct SimplifyOptions {
   //! evenly. The pipeline's 3: over the twelve fixed counts of bench/fixed_counts.py the
   //! RMS gain over uniform went from 20.8% to 25.8% (a prototype gave 24.4% at 2, 24.6% at
   //! 3, 24.7% at 4); with the metric turned a quarter (stretched across the curvature) it
-  //! fell to 7.1% (bench/RESULTS.md, "Stretched quads").
+  //! fell to 7.1% (bench/RESULTS.md, "Stretched quads"). The loop's M-fitmap bound then
+  //! takes a face's radius under the metric over its stretch s (the paper's radius across
+  //! the most curved direction, s times as far along the flatter one); automatic halting
+  //! keeps the paper's radius (bench/RESULTS.md, "The M-fitmap's bound along the stretch").
   double max_aspect = 1.0;
   //! Adaptive mode: refuse a collapse when a face it grows to a radius of at least half
   //! the reach (this share of the bounding-box diagonal; 0: no check) would lose the input
