@@ -182,13 +182,14 @@ Simplifier::Verdict Simplifier::check_grown_face(Index g, const Vec3* q, Bound b
 }
 
 // The radius the M-fitmap bounds: the paper's, s.radius, but in the loop with anisotropy
-// (ours) the corners' distances from the centre under the corners' mean metric over its
-// stretch s: across the most curved direction a face keeps the paper's bound, along the
-// flatter one, where the surface's normal turns less, it may reach s times as far, the
-// aspect the springs give it. With the paper's radius there, the bound held the stretched
-// quads of thin parts (fingers, ears) at their short side's size (bench/RESULTS.md,
-// "The M-fitmap's bound along the stretch"). The halting measure keeps the paper's radius,
-// as it keeps the paper's bound past the slack.
+// (ours) the corners' distances from the centre under the corners' mean metric, divided
+// by the metric's stretch: across the most curved direction a face keeps the paper's
+// bound, along the flatter one, where the surface's normal turns less, it may reach
+// stretch times as far, the aspect the springs give it. With the paper's radius there,
+// the long side of the stretched quads of thin parts (fingers, ears) held them to 60% of
+// a square quad's area at aspect 3 (bench/RESULTS.md, "The M-fitmap's bound along the
+// stretch"). The halting measure keeps the paper's radius, as it keeps the bound without
+// the slack.
 double Simplifier::bound_radius(Index g, const Vec3* q, const QuadShape& s, Bound bound) const {
   if (anisotropy_.empty() || bound == Bound::Halting) return s.radius;
   const auto c = m_.face_vertices(g);
