@@ -74,6 +74,10 @@ class QuadMesh {
   int valence(Index v) const { return int(face_count_[v]) + (is_border_vertex(v) ? 1 : 0); }
 
   const Vec3& position(Index v) const { return pos_[v]; }
+  //! The positions of a quad's corners c (a face's, or one a change would make).
+  std::array<Vec3, 4> positions_of(const std::array<Index, 4>& c) const {
+    return {pos_[c[0]], pos_[c[1]], pos_[c[2]], pos_[c[3]]};
+  }
   Vec3& position(Index v) { return pos_[v]; }
   const std::vector<Vec3>& positions() const { return pos_; }
 

@@ -109,7 +109,7 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
   for (Index f = 0; f < m.face_capacity(); ++f) {
     if (!m.is_face_live(f)) continue;
     const auto c = m.face_vertices(f);
-    const Vec3 p[4] = {m.position(c[0]), m.position(c[1]), m.position(c[2]), m.position(c[3])};
+    const auto p = m.positions_of(c);
     for (int k = 0; k < 4; ++k) {
       const double e = (p[k] - p[(k + 1) % 4]).norm() / q.mu;
       q.edge_ratio_min = std::min(q.edge_ratio_min, e);
@@ -126,7 +126,7 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
     q.two_quad_pieces += partner != kNone && partner > f;  // counted at the lower of the two
     if (ref) {
       const Vec3 n = quad_normal(p[0], p[1], p[2], p[3]);
-      const SurfacePoint s = ref->closest_to_quad_centre(p);
+      const SurfacePoint s = ref->closest_to_quad_centre(p.data());
       q.flipped_faces += s.found() && ref->normal_at(s).dot(n) < 0;
     }
   }

@@ -23,8 +23,8 @@ bool Simplifier::rotation_passes_cap(Index h, Rotation r) const {
 bool Simplifier::rotation_follows_reference(Index h, Rotation r, Index except) const {
   for (const auto& c : rotated_faces(m_, h, r)) {
     if (except != kNone && std::find(c.begin(), c.end(), except) != c.end()) continue;
-    const Vec3 q[4] = {m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3])};
-    if (!follows_reference(quad_normal(q[0], q[1], q[2], q[3]), c, q, Vec3::Zero())) return false;
+    const auto q = m_.positions_of(c);
+    if (!follows_reference(quad_normal(q[0], q[1], q[2], q[3]), c, q.data(), Vec3::Zero())) return false;
   }
   return true;
 }

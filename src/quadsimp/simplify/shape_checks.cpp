@@ -49,9 +49,9 @@ bool Simplifier::shape_ok(Index f, const Vec3* q, const Vec3& extra_normal) cons
   const Vec3 n = quad_normal(q[0], q[1], q[2], q[3]);
   if (!keeps_orientation(n, m_.face_area_normal(f))) return false;
   const auto c = m_.face_vertices(f);
-  const Vec3 p[4] = {m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3])};
+  const auto p = m_.positions_of(c);
   if (!follows_reference(n, c, q, extra_normal) &&
-      !(over_flap(c) && !follows_reference(quad_normal(p[0], p[1], p[2], p[3]), c, p, Vec3::Zero())))
+      !(over_flap(c) && !follows_reference(quad_normal(p[0], p[1], p[2], p[3]), c, p.data(), Vec3::Zero())))
     return false;
   if (!quad_is_convex(q[0], q[1], q[2], q[3], n) && quad_is_convex(p[0], p[1], p[2], p[3])) return false;
   return !(refuse_folds_ &&

@@ -233,9 +233,8 @@ Index Simplifier::count_beyond_reach() const {
   Index n = 0;
   for (Index f = 0; f < m_.face_capacity(); ++f) {
     if (!m_.is_face_live(f)) continue;
-    const auto c = m_.face_vertices(f);
-    const Vec3 q[4] = {m_.position(c[0]), m_.position(c[1]), m_.position(c[2]), m_.position(c[3])};
-    n += beyond_reach(f, q, shape_of(q));
+    const auto q = m_.positions_of(m_.face_vertices(f));
+    n += beyond_reach(f, q.data(), shape_of(q.data()));
   }
   return n;
 }

@@ -84,7 +84,7 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
     if (m.is_face_live(f)) faces.push_back(f);
   auto face_ok = [&](Index f, const FaceStart& s) {
     const auto c = m.face_vertices(f);
-    const Vec3 p[4] = {m.position(c[0]), m.position(c[1]), m.position(c[2]), m.position(c[3])};
+    const auto p = m.positions_of(c);
     const Vec3 nf = quad_normal(p[0], p[1], p[2], p[3]);
     if (!keeps_orientation(nf, s.normal) || (s.convex && !quad_is_convex(p[0], p[1], p[2], p[3], nf))) return false;
     if (quad_folds_further(p[0], p[1], p[2], p[3], [&] { return std::min(s.fold_cos, 0.0); })) return false;
@@ -97,7 +97,8 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
     const auto c = m.face_vertices(f);
     FaceStart& s = face_start[f];
     s.normal = m.face_area_normal(f);
-    s.convex = quad_is_convex(m.position(c[0]), m.position(c[1]), m.position(c[2]), m.position(c[3]));
+    const auto p = m.positions_of(c);
+    s.convex = quad_is_convex(p[0], p[1], p[2], p[3]);
     s.fold_cos = quad_fold_cos(m.positions(), c);
     s.agrees = true;
     s.agrees = face_ok(f, s);
