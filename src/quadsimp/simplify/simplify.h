@@ -37,7 +37,11 @@ struct SimplifyOptions {
   //! draws at six slacks from 1.05 to 1.3), the bunny's from 27.5% to 25.0% (it halts
   //! coarser), and the halting counts came nearer the paper's (bunny.ply 705 quads
   //! instead of 869; the paper 681). At 1.2 and 1.3 a draw of the bunny fell under 99.5%
-  //! projectable (bench/RESULTS.md, "Slack past the M-fitmap's bound").
+  //! projectable (bench/RESULTS.md, "Slack past the M-fitmap's bound"). Since the bound
+  //! follows stretched quads (max_aspect) the pipeline is back at 1: over 32 draws the
+  //! slack of 1.1 then gave the armadillo 1.6 points more and took 2.7 from the bunny and
+  //! 1.8 from the gargoyle, and left a bunny draw under 99.5% projectable (bench/RESULTS.md,
+  //! "The M-fitmap's bound along the stretch").
   double m_slack = 1.0;
   //! In adaptive mode F_S is clamped to its [q, 1-q] quantiles in the priority and in the
   //! smoothing's target sizes, which bounds the size ratio between the finest and the
