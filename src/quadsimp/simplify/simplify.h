@@ -31,8 +31,9 @@ struct SimplifyOptions {
   //! automatic halting still measures where faces reach the bound itself (1: the paper).
   //! Ours. The bound holds the faces of thin parts small (the armadillo's halting mesh had
   //! 23% of its faces on the tenth of the surface with the smallest F_M, the uniform one
-  //! 6%), and the rest of the surface paid for them. The pipeline's 1.1: over twelve fixed
-  //! counts the RMS gain over uniform went from 25.5% to 27.0%; over sixteen draws at
+  //! 6%), and the rest of the surface paid for them. At the thirty-fifth stop the pipeline
+  //! took 1.1: over twelve fixed counts the RMS gain over uniform went from 25.5% to 27.0%;
+  //! over sixteen draws at
   //! automatic halting the armadillo's from 21.5% to 25.5% (22.1% to 26.0% over eight
   //! draws at six slacks from 1.05 to 1.3), the bunny's from 27.5% to 25.0% (it halts
   //! coarser), and the halting counts came nearer the paper's (bunny.ply 705 quads
@@ -67,9 +68,9 @@ struct SimplifyOptions {
   //! fitmap's error balance asks (bunny: 248 quads, RMS 2.2x the uniform result at that
   //! count). With 0.15 and square quads (max_aspect 1, no reach) the bunny, gargoyle and
   //! armadillo halted within 10% of the paper's counts, the moai 15-35% below; with the
-  //! pipeline's stretched quads, reach and slack the bunny halts 4-19% above (705 to 811
-  //! quads over eight draws, against 681), the moai 6-24% above (100 to 117, against 94;
-  //! bench/RESULTS.md).
+  //! pipeline's stretched quads and reach the bunny halts 2-20% above (692 to 816 quads
+  //! over eight draws, against 681), the moai from 2% below to 23% above (92 to 116,
+  //! against 94; bench/RESULTS.md).
   double halt_share = 0.15;
   //! Adaptive mode: quads may be up to this many times longer along the surface's flatter
   //! direction than across its most curved one (fitmap/anisotropy.h; 1: as square as the
