@@ -698,8 +698,8 @@ TEST(Adaptive, m_fitmap_bounds_stretched_quads_across_and_halting_by_the_papers_
     Extent e{0, 0, 0, 0};
     for (Index g = 0; g < q.face_capacity(); ++g) {
       if (!q.is_face_live(g)) continue;
-      Vec3 p[4], centre = Vec3::Zero();
-      for (int i = 0; i < 4; ++i) centre += 0.25 * (p[i] = q.position(q.vertex(g, i)));
+      const auto p = q.positions_of(q.face_vertices(g));
+      const Vec3 centre = 0.25 * (p[0] + p[1] + p[2] + p[3]);
       const Vec3 along = Vec3(-centre.y(), centre.x(), 0).normalized();
       double radius = 0;
       for (const Vec3& c : p) {

@@ -85,15 +85,12 @@ double Simplifier::sample_fitmap(const std::vector<float>& field, const Vec3& p,
 // the face's current version.
 void Simplifier::append_entries(Index f) {
   const double scale = opt_.adaptive ? s_weight(f) : 1.0;
+  const auto c = m_.face_vertices(f);
+  const Metric g = anisotropy_.empty() ? Metric{} : mean_metric({c[0], c[1], c[2], c[3]});
   for (Index k = 0; k < 2; ++k) {
-    double length;
-    if (anisotropy_.empty()) {
-      length = norm_of_diagonal(m_, f, k);
-    } else {
-      const auto c = m_.face_vertices(f);
-      const Metric g = mean_metric({c[0], c[1], c[2], c[3]});
-      length = std::sqrt(length2_under(g, m_.position(c[k]) - m_.position(c[k + 2])));
-    }
+    const double length = anisotropy_.empty()
+                              ? norm_of_diagonal(m_, f, k)
+                              : std::sqrt(length2_under(g, m_.position(c[k]) - m_.position(c[k + 2])));
     heap_.push_back({float(length * scale), f, version_[f], k});
   }
 }
@@ -309,8 +306,9 @@ double Simplifier::predicted_halt() const {
 // the loop (the fifth to tenth stops' rule) drops a face whenever a neighbour's collapse
 // moves it, so its share was noisy and about a third of this one, and where it first
 // crossed its threshold was decided by rounding (bench/RESULTS.md).
-// The M-fitmap refuses here at its bound, not at the loop's slack past it: the loop's
-// faces may pass the bound, and where they do the surface counts as blocked.
+// The M-fitmap refuses here at its bound with the paper's radius, not at the loop's slack
+// past it nor along the stretch (bound_radius()): the loop's faces may pass the bound, and
+// where they do the surface counts as blocked.
 // check_collapse() only reads, so the faces are judged in parallel (a seventh of the
 // adaptive bunny's loop, judged one by one); the areas are summed in face order, so the
 // share, and where the run halts, do not depend on the threads.
