@@ -20,6 +20,8 @@ struct NormalMoments {
   Vec3 first = Vec3::Zero();
   Vec3 normal = Vec3::Zero();
   Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  // A ball's sum: its centroid is never read.
+  void add(const NormalMoments& o) { area += o.area, normal += o.normal, second += o.second; }
 };
 
 struct Scratch {
@@ -33,8 +35,7 @@ Anisotropy compute_anisotropy(const TriMesh& t, const std::vector<std::array<Ind
                               double radius, double max_aspect) {
   Anisotropy out;
   const Index nv = t.n_vertices(), nf = t.n_faces();
-  for (auto& x : out.g) x.assign(nv, 0.f);
-  for (Index v = 0; v < nv; ++v) out.g[0][v] = out.g[3][v] = out.g[5][v] = 1.f;
+  out.g.assign(nv, {1.f, 0.f, 0.f, 1.f, 0.f, 1.f});
   if (nf == 0 || !(radius > 0) || !(max_aspect > 1)) return out;
 
   std::vector<Vec3> centroid(nf);
@@ -71,14 +72,8 @@ Anisotropy compute_anisotropy(const TriMesh& t, const std::vector<std::array<Ind
     s.queue.assign(1, start[v]);
     s.mark[start[v]] = stamp;
     NormalMoments sum;
-    for (std::size_t i = 0; i < s.queue.size(); ++i) {
-      const Index c = s.queue[i];
-      sum.area += cell[c].area, sum.normal += cell[c].normal, sum.second += cell[c].second;
-      for (Index j = grid.adj_start[c]; j < grid.adj_start[c + 1]; ++j) {
-        const Index x = grid.adj[j];
-        if (s.mark[x] != stamp && (centre[x] - p).squaredNorm() < r2) s.mark[x] = stamp, s.queue.push_back(x);
-      }
-    }
+    sum.add(cell[start[v]]);
+    detail::grow_ball(grid, centre, p, r2, s.queue, s.mark, stamp, stamp, [&](Index c) { sum.add(cell[c]); });
     if (!(sum.area > 0) || !(sum.normal.squaredNorm() > 0)) return;
     const Vec3 n = sum.normal.normalized();
     const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - n * n.transpose();
@@ -92,7 +87,7 @@ Anisotropy compute_anisotropy(const TriMesh& t, const std::vector<std::array<Ind
     const Eigen::Matrix3d G =
         stretch * t1 * t1.transpose() + (1 / stretch) * t2 * t2.transpose() + n * n.transpose();
     const double entries[6] = {G(0, 0), G(0, 1), G(0, 2), G(1, 1), G(1, 2), G(2, 2)};
-    for (int k = 0; k < 6; ++k) out.g[k][v] = float(entries[k]);
+    for (int k = 0; k < 6; ++k) out.g[v][k] = float(entries[k]);
   });
   return out;
 }

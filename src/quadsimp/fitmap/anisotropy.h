@@ -17,8 +17,8 @@ struct Anisotropy {
   //! Per vertex, the symmetric metric G as xx, xy, xz, yy, yz, zz: a vector d is
   //! sqrt(d^T G d) long under it. G = s t1 t1^T + t2 t2^T / s + n n^T, t1 the most curved
   //! direction, so G keeps areas. Empty: no anisotropy.
-  std::array<std::vector<float>, 6> g;
-  bool empty() const { return g[0].empty(); }
+  std::vector<std::array<float, 6>> g;
+  bool empty() const { return g.empty(); }
 };
 
 //! The metric at every vertex of a clean triangle mesh, from the triangles' normals within

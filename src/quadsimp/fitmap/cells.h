@@ -23,4 +23,24 @@ struct CellGrid {
 CellGrid cluster_triangles(const std::vector<Vec3>& centroid, const std::vector<std::array<Index, 3>>& tri_adj,
                            double size);
 
+// Grows a ball of cells over the surface, breadth first from the cells already in `cells`:
+// each neighbour not stamped `stamp` or `shared` whose centre lies within r (r2 = r * r)
+// of p is stamped `stamp`, appended and handed to take(x), in the order appended. The
+// fitmaps' balls and the anisotropy's are this search with their own sums.
+template <class Take>
+void grow_ball(const CellGrid& grid, const std::vector<Vec3>& centre, const Vec3& p, double r2,
+               std::vector<Index>& cells, std::vector<Index>& mark, Index stamp, Index shared, Take&& take) {
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const Index c = cells[i];
+    for (Index j = grid.adj_start[c]; j < grid.adj_start[c + 1]; ++j) {
+      const Index x = grid.adj[j];
+      if (mark[x] != stamp && mark[x] != shared && (centre[x] - p).squaredNorm() < r2) {
+        mark[x] = stamp;
+        cells.push_back(x);
+        take(x);
+      }
+    }
+  }
+}
+
 }  // namespace qs::detail

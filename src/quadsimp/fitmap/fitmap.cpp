@@ -178,11 +178,10 @@ bool exact_ball(const TriMesh& t, const Incidence& inc, const std::vector<Moment
 // that face against the cell's mean normal. Cells touching through a mesh edge are
 // neighbours, so a BFS over cells follows the surface like the exact BFS does.
 struct CellLevel {
+  detail::CellGrid grid;
   std::vector<Moments> moments;
   std::vector<Vec3> centre;
   std::vector<double> against;  // area facing against the cell's own mean normal
-  std::vector<Index> adj_start, adj;
-  std::vector<Index> cell_of_triangle;
 };
 
 CellLevel build_cells(const TriMesh& t, const std::vector<Moments>& tm,
@@ -192,8 +191,9 @@ CellLevel build_cells(const TriMesh& t, const std::vector<Moments>& tm,
     centroid[f] = tm[f].area > 0 ? Vec3(tm[f].first / tm[f].area)
                                  : Vec3((t.positions[t.faces[f][0]] + t.positions[t.faces[f][1]] +
                                          t.positions[t.faces[f][2]]) / 3.0);
-  detail::CellGrid grid = detail::cluster_triangles(centroid, tri_adj, size);
   CellLevel L;
+  L.grid = detail::cluster_triangles(centroid, tri_adj, size);
+  const detail::CellGrid& grid = L.grid;
   const Index nc = grid.n_cells();
   L.moments.resize(nc);
   for (Index f = 0; f < t.n_faces(); ++f) L.moments[grid.cell_of_triangle[f]].add(tm[f]);
@@ -204,9 +204,6 @@ CellLevel build_cells(const TriMesh& t, const std::vector<Moments>& tm,
     const Index c = grid.cell_of_triangle[f];
     if (tm[f].normal.dot(L.moments[c].normal) <= 0) L.against[c] += tm[f].area;
   }
-  L.adj_start = std::move(grid.adj_start);
-  L.adj = std::move(grid.adj);
-  L.cell_of_triangle = std::move(grid.cell_of_triangle);
   return L;
 }
 
@@ -225,15 +222,8 @@ inline void take_if_within(const CellLevel& L, Index x, const Vec3& p, double r2
 // stamped `stamp` or `shared`, appending, stamping and summing each one it adds.
 void grow(const CellLevel& L, const Vec3& p, double r, std::vector<Index>& cells, std::vector<Index>& mark,
           Index stamp, Index shared, Moments& sum) {
-  const double r2 = r * r;
   Moments acc = sum;  // a local the compiler may keep in registers: sum could alias L.moments
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const Index c = cells[i];
-    for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
-      const Index x = L.adj[j];
-      if (mark[x] != stamp && mark[x] != shared) take_if_within(L, x, p, r2, stamp, cells, mark, acc);
-    }
-  }
+  detail::grow_ball(L.grid, L.centre, p, r * r, cells, mark, stamp, shared, [&](Index x) { acc.add(L.moments[x]); });
   sum = acc;
 }
 
@@ -296,8 +286,8 @@ void cell_balls(const CellLevel& L, Index start, const Index* members, std::size
   const Index outside = ++s.stamp;
   s.around.clear();
   for (Index c : s.inner)
-    for (Index j = L.adj_start[c]; j < L.adj_start[c + 1]; ++j) {
-      const Index x = L.adj[j];
+    for (Index j = L.grid.adj_start[c]; j < L.grid.adj_start[c + 1]; ++j) {
+      const Index x = L.grid.adj[j];
       if (s.mark[x] != inner && s.mark[x] != outside) {
         s.mark[x] = outside;
         s.around.push_back(x);
@@ -404,7 +394,7 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
       // The vertices still needed, grouped by the cell their search starts from.
       const Index nc = Index(L.moments.size());
       std::vector<Index> first(nc + 1, 0), members;
-      const auto start_of = [&](Index v) { return L.cell_of_triangle[inc.vt[inc.vt_start[v]]]; };
+      const auto start_of = [&](Index v) { return L.grid.cell_of_triangle[inc.vt[inc.vt_start[v]]]; };
       for (Index v = 0; v < nv; ++v)
         if (needed(v, i)) ++first[start_of(v) + 1];
       std::partial_sum(first.begin(), first.end(), first.begin());

@@ -84,6 +84,15 @@ class ReferenceSurface {
 
   //! Linear interpolation of a per-vertex field at a surface point.
   double interpolate(const std::vector<float>& field, const SurfacePoint& s) const;
+  //! The same for a field of N values per vertex.
+  template <std::size_t N>
+  std::array<double, N> interpolate(const std::vector<std::array<float, N>>& field, const SurfacePoint& s) const {
+    const auto& t = mesh_.faces[s.face];
+    std::array<double, N> x;
+    for (std::size_t k = 0; k < N; ++k)
+      x[k] = (1 - s.u - s.v) * field[t[0]][k] + s.u * field[t[1]][k] + s.v * field[t[2]][k];
+    return x;
+  }
   //! Interpolated (area-weighted) vertex normal at a surface point.
   Vec3 normal_at(const SurfacePoint& s) const;
 

@@ -112,8 +112,9 @@ class Simplifier {
     if (!opt_.adaptive) return;
     s_foot_[v] = clamped_s(ref_.interpolate(opt_.fitmaps->s, s));
     size_[v] = target_size(s_foot_[v]);
-    if (!anisotropy_.empty())
-      for (int k = 0; k < 6; ++k) metric_[v][k] = float(ref_.interpolate(anisotropy_.g[k], s));
+    if (anisotropy_.empty()) return;
+    const auto g = ref_.interpolate(anisotropy_.g, s);
+    for (int k = 0; k < 6; ++k) metric_[v][k] = float(g[k]);
   }
   using Metric = std::array<double, 6>;  // symmetric: xx, xy, xz, yy, yz, zz
   // The mean of the metrics under the given vertices (with anisotropy).
