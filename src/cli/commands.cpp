@@ -107,19 +107,7 @@ int run_simplify(const SimplifyArgs& a) {
     std::cerr << "quadsimp simplify: " << err << "\n";
     return kBadArguments;
   }
-  SimplifyParams params;
-  params.target_faces = a.faces;
-  params.adaptive = a.adaptive;
-  params.auto_halt = a.auto_halt;
-  params.tau = a.tau;
-  params.m_factor = a.m_factor;
-  params.m_slack = a.m_slack;
-  params.halt_share = a.halt_share;
-  params.max_aspect = a.max_aspect;
-  params.reach = a.reach;
-  params.preserve_boundary = a.preserve_boundary;
-  params.fast = a.fast;
-  params.fit_to_input = a.fit_to_input;
+  const SimplifyParams& params = a.params;
   if (const std::string why = check_params(params); !why.empty()) {
     std::cerr << "quadsimp simplify: " << why << " (see --help)\n";
     return kBadArguments;

@@ -18,12 +18,8 @@ int run_convert(const ConvertArgs& args);
 
 struct SimplifyArgs {
   std::string input, output;
-  unsigned faces = 0;
-  bool adaptive = false, auto_halt = false, preserve_boundary = false, fast = false, fit_to_input = false, stats = false, json = false,
-       quiet = false;
-  double tau = SimplifyParams().tau, m_factor = SimplifyParams().m_factor, m_slack = SimplifyParams().m_slack,
-         halt_share = SimplifyParams().halt_share, max_aspect = SimplifyParams().max_aspect,
-         reach = SimplifyParams().reach;
+  SimplifyParams params;  // the options bind to its fields, so the defaults are the pipeline's
+  bool stats = false, json = false, quiet = false;
   unsigned samples = 1000000;
 };
 int run_simplify(const SimplifyArgs& args);

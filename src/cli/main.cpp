@@ -53,37 +53,41 @@ int main(int argc, char** argv) {
   auto* s = app.add_subcommand("simplify", "Simplify a triangle or quad mesh into a coarser pure quad mesh");
   s->add_option("IN", simp.input, "input mesh (PLY, OBJ, OFF, STL; triangles or quads)")->required()->check(CLI::ExistingFile);
   s->add_option("OUT", simp.output, "output quad mesh (.ply, .obj or .off)")->required();
-  s->add_option("-f,--faces", simp.faces, "target number of quads")->check(whole_number_from_one());
-  s->add_flag("--adaptive", simp.adaptive, "adaptive mode driven by fitmaps");
-  s->add_flag("--auto-halt", simp.auto_halt,
+  s->add_option("-f,--faces", simp.params.target_faces, "target number of quads")->check(whole_number_from_one());
+  s->add_flag("--adaptive", simp.params.adaptive, "adaptive mode driven by fitmaps");
+  s->add_flag("--auto-halt", simp.params.auto_halt,
               "adaptive: stop once the faces whose collapses the M-fitmap (or --reach) refuses cover --halt-share of the "
               "surface");
-  s->add_option("--tau", simp.tau, "adaptive: M-fitmap tolerance (share of inconsistent area)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
-  s->add_option("--m-factor", simp.m_factor, "adaptive: the M-fitmap's bound on a face radius is F_M / this (see --m-slack)")
+  s->add_option("--tau", simp.params.tau, "adaptive: M-fitmap tolerance (share of inconsistent area)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  s->add_option("--m-factor", simp.params.m_factor,
+                "adaptive: the M-fitmap's bound on a face radius is F_M / this (see --m-slack)")
       ->capture_default_str()
       ->check(number_above_zero());
-  s->add_option("--m-slack", simp.m_slack,
+  s->add_option("--m-slack", simp.params.m_slack,
                 "adaptive: collapses may grow a face up to this times the M-fitmap's bound; --auto-halt still measures "
                 "where faces reach the bound itself (1: the paper's)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
-  s->add_option("--halt-share", simp.halt_share,
+  s->add_option("--halt-share", simp.params.halt_share,
                 "auto-halt: share of the surface the M-fitmap may block before stopping (1: until no feasible collapse remains, the paper's rule)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
-  s->add_option("--max-aspect", simp.max_aspect,
+  s->add_option("--max-aspect", simp.params.max_aspect,
                 "adaptive: how much longer than wide quads may grow along the flatter direction, and as much "
                 "further past the M-fitmap's bound there (1: square quads and the paper's bound)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
-  s->add_option("--reach", simp.reach,
+  s->add_option("--reach", simp.params.reach,
                 "adaptive: refuse collapses that leave a large quad's centre or edge midpoints without the input "
                 "along its normal within this share of the bounding-box diagonal (0: no check)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
-  s->add_flag("--preserve-boundary", simp.preserve_boundary, "keep the border exactly as it is");
-  s->add_flag("--fast", simp.fast, "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");
-  s->add_flag("--fit-to-input", simp.fit_to_input,
+  s->add_flag("--preserve-boundary", simp.params.preserve_boundary, "keep the border exactly as it is");
+  s->add_flag("--fast", simp.params.fast,
+              "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");
+  s->add_flag("--fit-to-input", simp.params.fit_to_input,
               "afterwards, move the vertices along their normals, off the input, to lower the distance both ways (ours)");
   s->add_flag("--stats", simp.stats, "print quality and distance metrics of the result");
   s->add_flag("--json", simp.json, "print the result's metrics (and the time) as one JSON object");
