@@ -201,14 +201,18 @@ double Simplifier::bound_radius(Index g, const Vec3* q, const QuadShape& s, Boun
 
 // SimplifyOptions::reach: whether face g with corners q (shape s) is large and misses the
 // input from its centre or an edge's midpoint, as the projectability measure casts its
-// rays (metrics.h).
+// rays (metrics.h). A border edge's midpoint is not checked: it lies at M0's border, where
+// a ray may pass just outside it. A face beside a hole is checked from its centre and its
+// other edges like any face, so that it cannot grow across the hole: skipping such faces
+// whole let a scan with many small holes grow its faces past them until no collapse was
+// left (bench/RESULTS.md, "Faces beside holes").
 bool Simplifier::beyond_reach(Index g, const Vec3* q, const QuadShape& s) const {
   if (!(reach_ > 0) || 2 * s.radius < reach_) return false;  // within the reach of its corners, on M0
-  for (Index i = 0; i < 4; ++i)
-    if (m_.is_border_vertex(m_.vertex(g, i))) return false;  // its rays may pass through a hole
   if (!ref_.ray_project(s.centre, s.normal, reach_).found()) return true;
-  for (int i = 0; i < 4; ++i)
+  for (Index i = 0; i < 4; ++i) {
+    if (m_.is_border_halfedge(QuadMesh::halfedge(g, i))) continue;
     if (!ref_.ray_project(0.5 * (q[i] + q[(i + 1) % 4]), s.normal, reach_).found()) return true;
+  }
   return false;
 }
 
