@@ -81,8 +81,8 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "stops there, and the log says so."},
       {kSimplify, "HaltShare", "Halting share (automatic halting)", ParamKind::Float, SimplifyParams().halt_share, 0.001, 1,
        "Automatic halting: the share of the surface the M-fitmap may block, beyond what it blocked before the "
-       "first collapse, before simplification stops (0.15: the gargoyle, armadillo and bunny stop within a "
-       "fifth of the paper's counts). Smaller stops earlier, with more quads; 1 runs until no "
+       "first collapse, before simplification stops (0.15: the gargoyle's and armadillo's scans stop within 2% "
+       "of the paper's counts, the bunny's 20% above). Smaller stops earlier, with more quads; 1 runs until no "
        "collapse is allowed, the paper's rule."},
       {kSimplify, "MaxAspect", "Largest aspect (adaptive)", ParamKind::Float, SimplifyParams().max_aspect, 1, 100,
        "Adaptive mode: how many times longer than wide a quad may grow along the surface's flatter direction "

@@ -68,8 +68,8 @@ struct SimplifyOptions {
   //! fitmap's error balance asks (bunny: 248 quads, RMS 2.2x the uniform result at that
   //! count). With 0.15 and square quads (max_aspect 1, no reach) the bunny, gargoyle and
   //! armadillo halted within 10% of the paper's counts, the moai 15-35% below; with the
-  //! pipeline's stretched quads and reach the bunny halts 2-20% above (692 to 816 quads
-  //! over eight draws, against 681), the moai from 2% below to 23% above (92 to 116,
+  //! pipeline's stretched quads and reach the bunny halts 12-37% above (766 to 933 quads
+  //! over eight draws, against 681; its base's holes hold the faces beside them), the moai from 2% below to 23% above (92 to 116,
   //! against 94; bench/RESULTS.md).
   double halt_share = 0.15;
   //! Adaptive mode: quads may be up to this many times longer along the surface's flatter
@@ -95,8 +95,9 @@ struct SimplifyOptions {
   //! eight draws). The pipeline's 0.045, a tenth short of that 5%, because the check sees
   //! five points before smoothing moves them: at 0.05 the lowest draw was 99.03%, at 0.045
   //! 99.76% (bench/RESULTS.md, "Within reach"). Smaller faces lie within the reach of
-  //! their corners, which are on the input; faces with a corner on the border are not
-  //! checked either, as their rays pass through the input's holes.
+  //! their corners, which are on the input. A border edge's midpoint is not checked, as
+  //! it lies at the input's border; the rest of a face beside a hole is (bench/RESULTS.md,
+  //! "Faces beside holes").
   double reach = 0;
   //! Gauss-Seidel sweeps of the spring relaxation after each collapse.
   int smoothing_sweeps = 3;
