@@ -24,9 +24,9 @@ CellGrid cluster_triangles(const std::vector<Vec3>& centroid, const std::vector<
                            double size);
 
 // Grows a ball of cells over the surface, breadth first from the cells already in `cells`:
-// each neighbour not stamped `stamp` or `shared` whose centre lies within r (r2 = r * r)
-// of p is stamped `stamp`, appended and handed to take(x), in the order appended. The
-// fitmaps' balls and the anisotropy's are this search with their own sums.
+// each neighbour not stamped `stamp` or `shared` whose centre is nearer p than sqrt(r2)
+// is stamped `stamp`, appended and handed to take(x), in the order appended. The fitmaps'
+// balls and the anisotropy's are this search with their own sums.
 template <class Take>
 void grow_ball(const CellGrid& grid, const std::vector<Vec3>& centre, const Vec3& p, double r2,
                std::vector<Index>& cells, std::vector<Index>& mark, Index stamp, Index shared, Take&& take) {
