@@ -49,6 +49,7 @@ QuadMesh run_simplification(MeshFile layer, const std::string& name, const Simpl
                   format("); regular %.1f%%, max valence %g", q.regular_percent, q.max_valence));
   if (const std::string why = target_shortfall(r, params.target_faces); !why.empty()) o.log.push_back(why);
   if (const std::string note = defects_note(q, r.beyond_reach); !note.empty()) o.log.push_back(note);
+  if (const std::string note = holes_note(q); !note.empty()) o.log.push_back(note);
   o.values = {{"faces", q.faces}, {"vertices", q.vertices}, {"regular_percent", q.regular_percent},
               {"max_valence", q.max_valence}, {"seconds", s}};
   return std::move(in.quads);

@@ -124,6 +124,7 @@ int run_simplify(const SimplifyArgs& a) {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads, &ref);
     if (const std::string note = defects_note(q, r.beyond_reach); log && !note.empty()) log(note);
+    if (const std::string note = holes_note(q); log && !note.empty()) log(note);
     if (a.json || a.stats) {
       const SurfaceDistance d = surface_distance(in.quads, ref, a.samples);
       if (a.json) {

@@ -125,6 +125,24 @@ def test_automatic_halting_that_runs_out_of_collapses_is_logged(capfd):
     assert "before the M-fitmap blocked its share of the surface: every remaining collapse was refused" in err
 
 
+def test_a_result_crowded_with_holes_is_logged(capfd):
+    # The grid with 3% of its triangles taken out: the holes stay open and crowd the
+    # result, and the log says so and names MeshLab's remedy. The whole grid, whose one
+    # border is its outline, gets no such note.
+    grid = open_grid(60)
+    faces = grid.face_matrix()
+    keep = np.random.default_rng(5).random(len(faces)) >= 0.03
+    for mesh, noted in ((pymeshlab.Mesh(vertex_matrix=grid.vertex_matrix(), face_matrix=faces[keep]), True),
+                        (grid, False)):
+        ms = pymeshlab.MeshSet(verbose=True)
+        ms.add_mesh(mesh, "grid")
+        ms.meshing_quad_mesh_simplification(targetfacenum=300)
+        assert is_pure_quad(ms.current_mesh())
+        err = capfd.readouterr().err
+        assert (" holes or outlines, and " in err) == noted, err
+        assert ('close them first (MeshLab: "Close Holes"' in err) == noted, err
+
+
 def cad_cylinder(around=64, height=2.0):
     """A closed cylinder as CAD tessellations write one: a row of long triangles round its
     side, each cap a fan round a vertex at its centre."""

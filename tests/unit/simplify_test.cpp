@@ -1092,6 +1092,30 @@ TEST(Metrics, closed_pieces_of_two_quads_are_counted_and_named) {
   }
 }
 
+// Border loops and the note on crowded holes: a patch's outline is one loop and gets no
+// note; holes add a loop each, and a result whose border holds a fifth of its vertices
+// and under 70% regular ones gets the note.
+TEST(Metrics, border_loops_are_counted_and_crowded_holes_noted) {
+  const QuadMesh grid = quad_grid(6, 5);
+  QuadQuality q = quad_quality(grid);
+  EXPECT_EQ(q.border_loops, 1u);
+  EXPECT_EQ(q.border_vertices, 22u);
+  EXPECT_EQ(holes_note(q), "");
+  std::vector<std::array<Index, 4>> quads;
+  for (Index f = 0; f < grid.n_faces(); ++f)
+    if (f != 7 && f != 15) quads.push_back(grid.face_vertices(f));  // two inner quads apart
+  q = quad_quality(QuadMesh::from_faces(grid.positions(), quads));
+  EXPECT_EQ(q.border_loops, 3u);
+  EXPECT_EQ(q.border_vertices, 30u);
+  q.regular_percent = 69;  // 30 of 42 vertices on the border: crowded, if irregular
+  EXPECT_EQ(holes_note(q).rfind("30 of the result's 42 vertices lie on its border, round 3 holes or outlines, "
+                                "and 69% are regular", 0), 0u) << holes_note(q);
+  q.regular_percent = 70;
+  EXPECT_EQ(holes_note(q), "");
+  q.regular_percent = 69, q.border_vertices = 8;
+  EXPECT_EQ(holes_note(q), "");
+}
+
 TEST(Metrics, offset_sphere_distance_is_the_offset) {
   TriMesh inner = tri_sphere(60, 80, 1.0);
   clean(inner);

@@ -99,6 +99,15 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
     if (!border) q.max_valence_interior = std::max(q.max_valence_interior, val);
     regular += val == (border ? 3 : 4);
     four += val == 4;
+    q.border_vertices += border;
+  }
+  // Each border vertex has one outgoing border half-edge, out(v): following them from an
+  // unvisited one goes round its loop.
+  std::vector<char> on_loop(m.vertex_capacity(), 0);
+  for (Index v = 0; v < m.vertex_capacity(); ++v) {
+    if (!m.is_vertex_live(v) || !m.is_border_vertex(v) || on_loop[v]) continue;
+    ++q.border_loops;
+    for (Index u = v; !on_loop[u]; u = m.to(m.out(u))) on_loop[u] = 1;
   }
   if (q.vertices) {
     q.regular_percent = 100.0 * regular / q.vertices;
@@ -177,10 +186,11 @@ std::string to_json(const QuadQuality& q, const SurfaceDistance* d) {
                         "\"max_valence_interior\": %d, \"regular_percent\": %.3f, \"valence4_percent\": %.3f, "
                         "\"homeometry_min\": %.4f, \"homeometry_max\": %.4f, \"edge_ratio_min\": %.4f, "
                         "\"edge_ratio_max\": %.4f, \"mean_edge\": %.6g, \"nonconvex_faces\": %u, \"flipped_faces\": %u, "
-                        "\"folded_faces\": %u, \"two_quad_pieces\": %u",
+                        "\"folded_faces\": %u, \"two_quad_pieces\": %u, \"border_vertices\": %u, \"border_loops\": %u",
                         q.faces, q.vertices, q.max_valence, q.max_valence_interior, q.regular_percent,
                         q.valence4_percent, q.homeometry_min, q.homeometry_max, q.edge_ratio_min, q.edge_ratio_max,
-                        q.mu, q.nonconvex_faces, q.flipped_faces, q.folded_faces, q.two_quad_pieces);
+                        q.mu, q.nonconvex_faces, q.flipped_faces, q.folded_faces, q.two_quad_pieces, q.border_vertices,
+                        q.border_loops);
   std::string s(buf, std::size_t(n));
   if (d) {
     n = std::snprintf(buf, sizeof buf,

@@ -25,6 +25,8 @@ struct QuadQuality {
   //! Closed pieces of two quads on the same four corners: the least quad mesh of a tiny
   //! closed part (a tetrahedron of scan debris), folded by nature.
   Index two_quad_pieces = 0;
+  Index border_vertices = 0;     //!< vertices on the border
+  Index border_loops = 0;        //!< closed runs of border edges: holes, and a patch's outline
 };
 
 QuadQuality quad_quality(const QuadMesh& mesh, const ReferenceSurface* ref = nullptr);

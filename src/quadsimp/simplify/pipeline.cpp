@@ -1,6 +1,7 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include "quadsimp/simplify/pipeline.h"
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -76,6 +77,16 @@ std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
          n(r.pieces_above_share) + " of them could not shrink to theirs (they hold " + n(r.faces_above_share) +
          " quads; if they are scan debris, remove small isolated pieces first, MeshLab: \"Remove Isolated "
          "pieces\"): there, " + refusals();
+}
+
+std::string holes_note(const QuadQuality& q) {
+  if (q.border_loops < 2 || 5 * q.border_vertices < q.vertices || q.regular_percent >= 70) return {};
+  char regular[32];
+  std::snprintf(regular, sizeof regular, "%.0f%%", q.regular_percent);
+  return std::to_string(q.border_vertices) + " of the result's " + std::to_string(q.vertices) +
+         " vertices lie on its border, round " + std::to_string(q.border_loops) + " holes or outlines, and " +
+         regular + " are regular: holes stay open, and the quads between them cannot be regular. If these are "
+         "holes in a scan, close them first (MeshLab: \"Close Holes\"; pymeshlab: meshing_close_holes)";
 }
 
 std::string defects_note(const QuadQuality& q, Index beyond_reach) {
