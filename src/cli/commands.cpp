@@ -41,7 +41,8 @@ ProgressFn progress_bar(bool quiet) {
 }
 
 void print_quality(const QuadQuality& q, const SurfaceDistance* d) {
-  std::printf("faces %u, vertices %u, pure quad: yes\n", q.faces, q.vertices);
+  std::printf("faces %u, vertices %u (%u on the border, in %u loops), pure quad: yes\n", q.faces, q.vertices,
+              q.border_vertices, q.border_loops);
   std::printf("valence: max %d (interior %d), regular %.1f%% (valence 4 inside, 3 on the border), valence-4 %.1f%%\n",
               q.max_valence, q.max_valence_interior, q.regular_percent, q.valence4_percent);
   std::printf("homeometry: min %.3f max %.3f (edges only: %.3f .. %.3f)\n", q.homeometry_min, q.homeometry_max,

@@ -116,9 +116,11 @@ TEST_F(Cli, simplify_stats_and_fitmap) {
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("60 faces"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Hausdorff"), std::string::npos);
+  EXPECT_NE(r.out.find("(0 on the border, in 0 loops)"), std::string::npos) << r.out;  // a closed sphere
   r = run("stats " + input_ + " " + out + " --json --samples 2000");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("\"faces\": 60"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"border_loops\": 0"), std::string::npos) << r.out;
   r = run("stats " + input_ + " " + input_);  // triangles: not a quad mesh
   EXPECT_EQ(r.code, 1);
   r = run("fitmap " + input_ + " " + p("f.ply") + " -q");
