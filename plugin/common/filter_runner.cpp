@@ -47,9 +47,7 @@ QuadMesh run_simplification(MeshFile layer, const std::string& name, const Simpl
   o.log.push_back(format("quad mesh simplification: %g -> %g quads in %.2f s (", r.initial_faces, r.faces, s) +
                   operations_done(r) +
                   format("); regular %.1f%%, max valence %g", q.regular_percent, q.max_valence));
-  if (const std::string why = target_shortfall(r, params.target_faces); !why.empty()) o.log.push_back(why);
-  if (const std::string note = defects_note(q, r.beyond_reach); !note.empty()) o.log.push_back(note);
-  if (const std::string note = holes_note(q); !note.empty()) o.log.push_back(note);
+  for (std::string& note : result_notes(r, q, params.target_faces)) o.log.push_back(std::move(note));
   o.values = {{"faces", q.faces}, {"vertices", q.vertices}, {"regular_percent", q.regular_percent},
               {"max_valence", q.max_valence}, {"seconds", s}};
   return std::move(in.quads);

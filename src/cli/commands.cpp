@@ -119,13 +119,11 @@ int run_simplify(const SimplifyArgs& a) {
     Input in = load_input(a.input, {}, log);
     const ReferenceSurface ref(std::move(in.reference));
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
-    const std::string shortfall = target_shortfall(r, params.target_faces);
-    if (log && !shortfall.empty()) log(shortfall);
     write_quad_mesh(a.output, in.quads);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads, &ref);
-    if (const std::string note = defects_note(q, r.beyond_reach); log && !note.empty()) log(note);
-    if (const std::string note = holes_note(q); log && !note.empty()) log(note);
+    if (log)
+      for (const std::string& note : result_notes(r, q, params.target_faces)) log(note);
     if (a.json || a.stats) {
       const SurfaceDistance d = surface_distance(in.quads, ref, a.samples);
       if (a.json) {

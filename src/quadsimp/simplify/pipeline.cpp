@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/reference/reference_surface.h"
@@ -87,6 +88,13 @@ std::string holes_note(const QuadQuality& q) {
          " vertices lie on its border, round " + std::to_string(q.border_loops) + " holes or outlines, and " +
          regular + " are regular: holes stay open, and the quads between them cannot be regular. If these are "
          "holes in a scan, close them first (MeshLab: \"Close Holes\"; pymeshlab: meshing_close_holes)";
+}
+
+std::vector<std::string> result_notes(const SimplifyReport& r, const QuadQuality& q, Index target_faces) {
+  std::vector<std::string> notes;
+  for (std::string note : {target_shortfall(r, target_faces), defects_note(q, r.beyond_reach), holes_note(q)})
+    if (!note.empty()) notes.push_back(std::move(note));
+  return notes;
 }
 
 std::string defects_note(const QuadQuality& q, Index beyond_reach) {

@@ -1,6 +1,9 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "quadsimp/convert/prepare_input.h"
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/metrics/metrics.h"
@@ -16,7 +19,7 @@ struct SimplifyParams {
   bool auto_halt = false;        //!< adaptive: stop once the M-fitmap blocks halt_share of the surface
   double tau = FitmapOptions().tau;                //!< M-fitmap tolerance
   double m_factor = SimplifyOptions().m_factor;      //!< adaptive: the M-fitmap's bound, F_M / m_factor
-  double m_slack = 1.0;          //!< adaptive: see SimplifyOptions::m_slack (1: the paper's bound)
+  double m_slack = SimplifyOptions().m_slack;  //!< adaptive: see SimplifyOptions::m_slack (1: the paper's bound)
   double halt_share = SimplifyOptions().halt_share;  //!< auto_halt: see SimplifyOptions::halt_share
   double max_aspect = 3.0;       //!< adaptive: see SimplifyOptions::max_aspect (1: square quads)
   double reach = 0.045;          //!< adaptive: see SimplifyOptions::reach (0: no check)
@@ -62,6 +65,10 @@ std::string defects_note(const QuadQuality& quality, Index beyond_reach = 0);
 //! 4% on 5 holes, 78%). A patch's outline alone is one loop, and a tube's two ends leave
 //! its vertices regular: neither gets the note.
 std::string holes_note(const QuadQuality& quality);
+
+//! The log's notes on a finished run, in order: target_shortfall(), defects_note() and
+//! holes_note(), those that have something to say. The CLI and the filters both log these.
+std::vector<std::string> result_notes(const SimplifyReport& report, const QuadQuality& quality, Index target_faces);
 
 //! The operations a run did, for a summary line: "N collapses, M rotations", with the
 //! chord collapses between them when there were any.
