@@ -98,6 +98,7 @@ SimplifyParams simplify_params_of(const ParameterList& params) {
   p.halt_share = params.getFloat("HaltShare");
   p.tau = params.getFloat("Tau");
   p.max_aspect = params.getFloat("MaxAspect");
+  p.reach = params.getFloat("Reach");
   p.preserve_boundary = params.getBool("PreserveBoundary");
   p.fast = params.getBool("Fast");
   p.fit_to_input = params.getBool("FitToInput");

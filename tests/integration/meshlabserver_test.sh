@@ -30,7 +30,7 @@ for f in "Quad Mesh Simplification" "Convert to Pure Quad Mesh" "Compute Fitmaps
   grep -q "section .* $f" "$work/dump.txt" || fail "filter '$f' missing from meshlabserver -d"
 done
 for p in "Adaptive (fitmaps)" "Target number of quads" "Automatic halting (adaptive)" \
-         "Halting share (automatic halting)" "Fitmap tolerance tau" "Largest aspect (adaptive)" \
+         "Halting share (automatic halting)" "Fitmap tolerance tau" "Largest aspect (adaptive)" "Reach (adaptive)" \
          "Preserve boundary" "Fast (one pass)" "Fit vertices to the input" "Reference mesh" "Distance samples"; do
   grep -q "$p" "$work/dump.txt" || fail "parameter '$p' missing from meshlabserver -d"
 done
@@ -148,6 +148,13 @@ import json, sys
 a, b, default = (json.load(open(p)) for p in sys.argv[1:4])
 assert (b["faces"], b["rms_e3"]) != (default["faces"], default["rms_e3"]), "MaxAspect 1 changed nothing"
 print("ok: largest aspect 1: plugin and CLI stop at", b["faces"], "quads, against", default["faces"])
+PY
+  # 3b'''. No reach check from a script (Reach 0): where the CLI's --reach 0 stops.
+  float_setting_and_cli noreach Reach 0 --reach 0 <<'PY'
+import json, sys
+a, b, default = (json.load(open(p)) for p in sys.argv[1:4])
+assert (b["faces"], b["rms_e3"]) != (default["faces"], default["rms_e3"]), "Reach 0 changed nothing"
+print("ok: reach 0: plugin and CLI stop at", b["faces"], "quads, against", default["faces"])
 PY
 fi
 

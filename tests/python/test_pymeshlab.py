@@ -464,8 +464,8 @@ def test_adaptive_automatic_halting_stops_where_the_cli_does(bunny_path, cli, tm
 
 
 def test_the_moai_halts_projectable_where_the_cli_does(cli, tmp_path):
-    # The reach check (the filters take the pipeline's, as they do the M-fitmap factor):
-    # the moai, smooth, halted at 63 quads, 97.3% projectable, before it.
+    # The reach check (the filters' Reach, the CLI's --reach): without it the moai, smooth,
+    # halts coarser and less projectable (66 quads, 98.9%).
     moai = SHARED / "moai.ply"
     if not moai.exists():
         pytest.skip("no ../shared/datasets/moai.ply")
@@ -473,6 +473,10 @@ def test_the_moai_halts_projectable_where_the_cli_does(cli, tmp_path):
                               ["--adaptive", "--auto-halt"])
     assert q["projectability"] >= 0.995
     assert q["projectability"] == pytest.approx(stats["projectability"], abs=0.002)
+    unchecked, stats = plugin_and_cli(str(moai), cli, tmp_path, {"adaptive": True, "autohalt": True, "reach": 0.0},
+                                      ["--adaptive", "--auto-halt", "--reach", "0"])
+    assert unchecked["faces"] < q["faces"]
+    assert unchecked["projectability"] < 0.995
 
 
 def test_largest_aspect_reaches_the_loop_as_the_clis_does(bunny_path, cli, tmp_path):
