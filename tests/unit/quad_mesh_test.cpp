@@ -99,7 +99,7 @@ TEST(QuadMesh, hole_has_inner_border_loop) {
   }
 }
 
-TEST(QuadMesh, border_in_arrives_on_the_border) {
+TEST(QuadMesh, border_in_arrives_on_the_border_and_loops_walk_both_ways) {
   // Outer corners (one face), outer edge vertices (two) and hole corners (three faces).
   QuadMesh m = grid_with_hole(3);
   int seen = 0;
@@ -111,6 +111,11 @@ TEST(QuadMesh, border_in_arrives_on_the_border) {
     EXPECT_NE(h, m.out(v));
     // The border loop continues: out(v) starts where h ends.
     EXPECT_EQ(m.from(m.out(v)), m.to(h));
+    // Its neighbours along the loop are border vertices, and each walks back to v.
+    EXPECT_TRUE(m.is_border_vertex(m.next_on_border(v)));
+    EXPECT_EQ(m.prev_on_border(m.next_on_border(v)), v);
+    EXPECT_EQ(m.next_on_border(m.prev_on_border(v)), v);
+    EXPECT_NE(m.next_on_border(v), m.prev_on_border(v));
     ++seen;
   }
   EXPECT_EQ(seen, 16);

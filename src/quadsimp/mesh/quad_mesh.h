@@ -69,6 +69,9 @@ class QuadMesh {
     for (Index t = twin_[prev(h)]; t != kNone; t = twin_[prev(t)]) h = t;
     return prev(h);
   }
+  //! The border vertices after and before border vertex v along its border loop.
+  Index next_on_border(Index v) const { return to(out_[v]); }
+  Index prev_on_border(Index v) const { return from(border_in(v)); }
 
   //! Number of edges incident to v (a border vertex counts its two border edges).
   int valence(Index v) const { return int(face_count_[v]) + (is_border_vertex(v) ? 1 : 0); }

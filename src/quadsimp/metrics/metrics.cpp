@@ -107,7 +107,7 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
   for (Index v = 0; v < m.vertex_capacity(); ++v) {
     if (!m.is_vertex_live(v) || !m.is_border_vertex(v) || on_loop[v]) continue;
     ++q.border_loops;
-    for (Index u = v; !on_loop[u]; u = m.to(m.out(u))) on_loop[u] = 1;
+    for (Index u = v; !on_loop[u]; u = m.next_on_border(u)) on_loop[u] = 1;
   }
   if (q.vertices) {
     q.regular_percent = 100.0 * regular / q.vertices;

@@ -17,7 +17,7 @@ bool can_collapse_border_ear(const QuadMesh& m, Index f, Index k) {
   if (m.twin(hc) == kNone || m.twin(hd) == kNone) return false;
   const Index a = m.from(ha), b = m.from(hb), c = m.from(hc), d = m.from(hd);
   // The border neighbours beyond a and c.
-  const Index x = m.from(m.border_in(a)), y = m.to(m.out(c));
+  const Index x = m.prev_on_border(a), y = m.next_on_border(c);
   if (x == c || y == a || x == y) return false;  // the loop would shrink below three edges
   return detail::link_condition(m, a, c, b, d);
 }

@@ -37,7 +37,7 @@ int Simplifier::target_valence_of_border(Index v) const {
 // Unit directions of the border edges arriving at and leaving border vertex v.
 std::pair<Vec3, Vec3> Simplifier::border_directions(Index v) const {
   const Vec3& p = m_.position(v);
-  return {(p - m_.position(m_.from(m_.border_in(v)))).normalized(), (m_.position(m_.to(m_.out(v))) - p).normalized()};
+  return {(p - m_.position(m_.prev_on_border(v))).normalized(), (m_.position(m_.next_on_border(v)) - p).normalized()};
 }
 
 // The angle between the two border edges at border vertex v.
@@ -56,7 +56,7 @@ double Simplifier::border_turn(Index v) const {
 bool Simplifier::is_border_corner(Index v) const {
   const double t = border_turn(v);
   if (t <= M_PI / 4) return false;
-  const Index next = m_.to(m_.out(v)), prev = m_.from(m_.border_in(v));
+  const Index next = m_.next_on_border(v), prev = m_.prev_on_border(v);
   const double t_next = border_turn(next), t_prev = border_turn(prev);
   if (std::max(t_next, t_prev) < 0.5 * t) return true;
   // The end of a strip one quad wide: v and a neighbour w, both of valence 2 (the free
@@ -67,8 +67,8 @@ bool Simplifier::is_border_corner(Index v) const {
     return m_.valence(v) == 2 && m_.valence(w) == 2 && t_w > M_PI / 4 &&
            std::max(t_before_v, border_turn(after_w)) < 0.5 * std::min(t, t_w);
   };
-  return strip_end(next, t_next, t_prev, m_.to(m_.out(next))) ||
-         strip_end(prev, t_prev, t_next, m_.from(m_.border_in(prev)));
+  return strip_end(next, t_next, t_prev, m_.next_on_border(next)) ||
+         strip_end(prev, t_prev, t_next, m_.prev_on_border(prev));
 }
 
 // Border coarsening (ours; see ops/border_ear.h). A border vertex b whose two border

@@ -80,7 +80,7 @@ bool Simplifier::moved_faces_ok(Index v, const Vec3& p) const {
     const double after2 = (p - m_.position(e)).squaredNorm();
     return after2 < near * near && after2 < (before - m_.position(e)).squaredNorm();
   };
-  if (m_.is_border_vertex(v) && comes_within(m_.from(m_.border_in(v)), 0.1)) return false;
+  if (m_.is_border_vertex(v) && comes_within(m_.prev_on_border(v), 0.1)) return false;
   bool ok = true;
   m_.for_each_outgoing(v, [&](Index h) {
     if (!ok) return;

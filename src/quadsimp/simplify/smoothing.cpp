@@ -72,7 +72,7 @@ void Simplifier::smooth_vertex(Index v) {
     // the step along the border only. Springs to the two border neighbours alone left
     // the interior edges of border vertices free to stretch: bunny.ply at 5K had a
     // border quad with edges of 0.50 and 2.48 mu.
-    const Index ia = m_.to(m_.out(v)), ib = m_.from(m_.border_in(v));
+    const Index ia = m_.next_on_border(v), ib = m_.prev_on_border(v);
     const Vec3 a = m_.position(ia), b = m_.position(ib);
     spring(ia, rest_length(v, ia), 0.5);
     spring(ib, rest_length(v, ib), 0.5);
