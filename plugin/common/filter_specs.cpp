@@ -24,8 +24,8 @@ const std::vector<FilterSpec>& filter_specs() {
        "of quads are collapsed (a strip one quad wide loses one quad at a time). <br><b>Uniform</b> mode collapses the shortest diagonal first and "
        "stops at the target number of faces. <b>Adaptive</b> mode weights diagonals by the S-fitmap (small "
        "faces where the surface is curved), refuses collapses that would make a face larger than the M-fitmap "
-       "allows or leave parts of a large face without the input along its normal within 4.5% of the bounding-box "
-       "diagonal (so that the result stays projectable onto the input), and can stop by itself once these "
+       "allows or leave parts of a large face without the input along its normal within the reach (4.5% of the "
+       "bounding-box diagonal by default, so that the result stays projectable onto the input), and can stop by itself once these "
        "block the halting share of the surface (15% by default). <b>Fit vertices to the input</b> then moves the vertices off the input, along "
        "their normals, so that the quads lie closer to it. <br>The result goes to a new layer; the input layer is not changed. "
        "The result is geometry only: to give it the input's vertex colours, run <i>Vertex Attribute Transfer</i> "
@@ -75,7 +75,7 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "Default: a tenth of the input's quads."},
       {kSimplify, "AutoHalt", "Automatic halting (adaptive)", ParamKind::Bool, 0, 0, 1,
        "Adaptive mode only: ignore the target and stop once the faces whose collapses the M-fitmap (or the reach "
-       "check, see the filter's help) refuses cover "
+       "check, see Reach) refuses cover "
        "the halting share of the surface (the paper runs until none is allowed, which coarsens the rest far past "
        "its error balance). Where every remaining collapse is refused first (a noisy scan, a small mesh), it "
        "stops there, and the log says so."},
