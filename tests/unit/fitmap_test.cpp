@@ -373,6 +373,29 @@ TEST(Adaptive, auto_halt_counts_only_the_share_the_collapses_block) {
   EXPECT_GT(r.blocked_share, 0.25);
 }
 
+TEST(Adaptive, auto_halt_measures_a_height_field_before_it_runs_out) {
+  // Nothing in a height field faces away from its fitted planes: F_M is the largest
+  // radius everywhere, and the count predicted from it a few faces, far below where the
+  // reach blocks the halting share. The measure must not wait for the predicted count
+  // (9): waiting, this field ran out of collapses at 119 quads (the share, measured only
+  // then, 0.47); measured at the halvings before it, it halts by the share at 225.
+  TriMesh t = tri_grid(60, 60);
+  for (Vec3& p : t.positions) p.z() = 0.1 * std::sin(6 * M_PI * p.x()) * std::sin(6 * M_PI * p.y());
+  const ReferenceSurface ref(t);
+  const Fitmaps f = compute_fitmaps(t);
+  QuadMesh q = tri_to_quad(t);
+  SimplifyOptions opt = adaptive_options(f);
+  opt.refuse_folds = true;  // as the pipeline runs it
+  opt.max_aspect = SimplifyParams().max_aspect;
+  opt.reach = SimplifyParams().reach;
+  const SimplifyReport r = simplify(q, ref, opt);
+  validate(q);
+  EXPECT_LT(r.predicted_faces, 0.1 * double(r.faces));
+  EXPECT_FALSE(r.ran_out);
+  EXPECT_GE(r.blocked_share, opt.halt_share);
+  EXPECT_GT(r.faces, 160u);
+}
+
 TEST(Adaptive, slack_loosens_the_loop_but_halting_measures_the_bound_itself) {
   // The sphere of auto_halt_stops_once_the_m_fitmap_blocks_its_share. A slack of 1.25
   // over F_M and a bound of F_M / 0.8 without slack refuse the same collapses, so to a
