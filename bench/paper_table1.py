@@ -91,9 +91,10 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False, python=False):
+def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False, python=False, extra=()):
     """The options the bench scripts take (--draws: Tables 2 and 3 only; --adaptive-args:
-    the fixed counts only; --python, a Python with pymeshlab: the MeshLab comparison only)."""
+    the fixed counts only; --python, a Python with pymeshlab: the MeshLab comparison and
+    the open scans; extra: (flag, argparse keywords) of one script's own)."""
     here = os.path.dirname(os.path.abspath(__file__))
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quadsimp", default=os.path.join(here, "..", "build", "src", "quadsimp"))
@@ -108,6 +109,8 @@ def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False, pytho
     if adaptive_args:
         ap.add_argument("--adaptive-args", default="", type=str.split,
                         help='more options for the adaptive runs, e.g. --adaptive-args="--m-factor 0.8"')
+    for flag, keywords in extra:
+        ap.add_argument(flag, **keywords)
     return ap.parse_args()
 
 

@@ -33,4 +33,5 @@ check paper_tables23 moai 7 --draws 1
 check fit_to_input moai 4
 check fixed_counts gargoyle 4
 check meshlab_quadric moai 15 --python "$python"
+check open_scans face 1 --python "$python" --counts
 [ "$failures" = 0 ]
