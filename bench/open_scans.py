@@ -62,7 +62,8 @@ def make(model, args, tmp):
 def row(model, how, a, u):
     gain = 100 * (1 - a["rms_e3"] / u["rms_e3"])
     print(f"| {model} | {how} | {a['faces']} / {u['faces']} | {a['rms_e3']:.3f} / {u['rms_e3']:.3f} | {gain:.1f}% "
-          f"| {a['hausdorff_e3']:.2f} / {u['hausdorff_e3']:.2f} | {a['regular_percent']:.1f} / {u['regular_percent']:.1f} "
+          f"| {a['hausdorff_e3']:.2f} / {u['hausdorff_e3']:.2f} "
+          f"| {a['regular_percent']:.1f} / {u['regular_percent']:.1f} "
           f"| {100 * a['projectability']:.2f} / {100 * u['projectability']:.2f} | {a['seconds']:.1f} |")
     sys.stdout.flush()
 

@@ -17,7 +17,8 @@ def npy(descr, shape, values):
         struct.pack("<%d%s" % (len(values), code), *values)
 rows, cols = 9, 11
 with zipfile.ZipFile(sys.argv[1], "w") as z:
-    z.writestr("elevation.npy", npy("<i2", (rows, cols), [100 + 3 * r + 2 * c for r in range(rows) for c in range(cols)]))
+    heights = [100 + 3 * r + 2 * c for r in range(rows) for c in range(cols)]
+    z.writestr("elevation.npy", npy("<i2", (rows, cols), heights))
     for name, v in (("dx", 0.001), ("dy", 0.001), ("xmin", -84.4), ("xmax", -84.39), ("ymin", 0.0), ("ymax", 0.009)):
         z.writestr(name + ".npy", npy("<f8", (), [v]))
 PY
