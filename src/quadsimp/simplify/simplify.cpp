@@ -537,7 +537,7 @@ SimplifyReport Simplifier::run() {
   // scans and height fields"). A measure at every halving of the faces above the
   // predicted range brings both forward once the share is half way to the halt; it only
   // reads, so where the prediction holds the run is the same.
-  Index next_early = measure && next_scan < m_.n_faces() ? m_.n_faces() / 2 : 0;
+  Index next_early = measure && m_.n_faces() / 2 > next_scan ? m_.n_faces() / 2 : 0;
   // Where the input's own faces already reach F_M (a thin rim, noise) nothing will ever
   // coarsen; only what the collapses add counts towards the halt. A pancake's rim was
   // blocked over more than 15% of its area from the start, and it stopped after one
