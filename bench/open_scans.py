@@ -54,7 +54,7 @@ def make(model, args, tmp):
         return out
     options = {"dem": [], "dem4": ["--exaggeration", "4"], "dem_full": ["--step", "1"]}[model]
     npz = ["--npz", args.npz] if args.npz else []
-    subprocess.run([sys.executable, os.path.join(HERE, "..", "datasets", "make_terrain.py"), out, *options, *npz],
+    subprocess.run([args.python, os.path.join(HERE, "..", "datasets", "make_terrain.py"), out, *options, *npz],
                    check=True, capture_output=True)
     return out
 

@@ -4,47 +4,23 @@ scan, for want of the paper's Rampart (bench/RESULTS.md, "An open scan").
 
 The elevations are matplotlib's sample DEM `jacksboro_fault_dem.npz` (USGS, 3 arc-seconds,
 344 x 403 posts, whole metres), read from matplotlib's wheel on PyPI; no third-party file
-is committed here.
+is committed here. Needs numpy (the project's .venv has it):
 
-    python3 datasets/make_terrain.py OUT.ply [--step 2] [--exaggeration 1] [--npz PATH]
+    .venv/bin/python datasets/make_terrain.py OUT.ply [--step 2] [--exaggeration 1] [--npz PATH]
 
 Without --npz the wheel is fetched with `pip download matplotlib --no-deps`.
 """
 import argparse
-import ast
 import io
-import math
 import pathlib
-import struct
 import subprocess
 import sys
 import tempfile
 import zipfile
 
+import numpy as np
+
 NPZ_IN_WHEEL = "matplotlib/mpl-data/sample_data/jacksboro_fault_dem.npz"
-
-
-def read_npy(data):
-    """A .npy array as (flat values, shape); only what the DEM uses (little-endian, C order)."""
-    if data[:6] != b"\x93NUMPY":
-        raise ValueError("not a .npy array")
-    major = data[6]
-    header_len = struct.unpack("<H" if major == 1 else "<I", data[8:10] if major == 1 else data[8:12])[0]
-    start = 10 if major == 1 else 12
-    header = ast.literal_eval(data[start:start + header_len].decode("latin1"))
-    if header["fortran_order"]:
-        raise ValueError("Fortran-ordered arrays are not handled")
-    codes = {"<i2": "h", "<f8": "d", "<f4": "f"}
-    code = codes[header["descr"]]
-    shape = header["shape"]
-    count = math.prod(shape) if shape else 1
-    values = struct.unpack("<%d%s" % (count, code), data[start + header_len:][:count * struct.calcsize(code)])
-    return values, shape
-
-
-def load_dem(npz_bytes):
-    with zipfile.ZipFile(io.BytesIO(npz_bytes)) as z:
-        return {name[:-4]: read_npy(z.read(name)) for name in z.namelist()}
 
 
 def fetch_npz():
@@ -63,28 +39,28 @@ def main():
     ap.add_argument("--exaggeration", type=float, default=1.0, help="vertical scale (1: true scale)")
     ap.add_argument("--npz", help="jacksboro_fault_dem.npz, if already at hand")
     a = ap.parse_args()
-    dem = load_dem(pathlib.Path(a.npz).read_bytes() if a.npz else fetch_npz())
-    z, (rows, cols) = dem["elevation"]
-    lat = 0.5 * (dem["ymin"][0][0] + dem["ymax"][0][0])
-    # Degrees to metres at the DEM's mean latitude: a few kilometres of error over its
-    # 30 km would not matter; the shape is what is measured.
-    dx = dem["dx"][0][0] * a.step * 111320.0 * math.cos(math.radians(lat))
-    dy = dem["dy"][0][0] * a.step * 110574.0
-    keep_r, keep_c = range(0, rows, a.step), range(0, cols, a.step)
-    ny, nx = len(keep_r), len(keep_c)
-    points = [(j * dx, i * dy, a.exaggeration * z[r * cols + c])
-              for i, r in enumerate(keep_r) for j, c in enumerate(keep_c)]
-    faces = []
-    for i in range(ny - 1):
-        for j in range(nx - 1):
-            v = i * nx + j
-            faces += [(v, v + 1, v + nx + 1), (v, v + nx + 1, v + nx)]
+    dem = np.load(io.BytesIO(pathlib.Path(a.npz).read_bytes() if a.npz else fetch_npz()))
+    z = dem["elevation"].astype(np.float64)[::a.step, ::a.step]
+    ny, nx = z.shape
+    # Degrees to metres at the DEM's mean latitude: a few metres of error over its 30 km
+    # would not matter; the shape is what is measured.
+    lat = np.radians(0.5 * (float(dem["ymin"]) + float(dem["ymax"])))
+    dx = float(dem["dx"]) * a.step * 111320.0 * np.cos(lat)
+    dy = float(dem["dy"]) * a.step * 110574.0
+    x, y = np.meshgrid(np.arange(nx) * dx, np.arange(ny) * dy)
+    points = np.stack([x.ravel(), y.ravel(), a.exaggeration * z.ravel()], axis=1).astype("<f4")
+    # Two triangles per cell, corners v, v+1, v+nx+1, v+nx counter-clockwise.
+    v = (np.arange(ny - 1)[:, None] * nx + np.arange(nx - 1)[None, :]).ravel()
+    cells = np.stack([np.stack([v, v + 1, v + nx + 1], axis=1), np.stack([v, v + nx + 1, v + nx], axis=1)], axis=1)
+    faces = np.zeros(2 * len(v), dtype=[("n", "u1"), ("corners", "<i4", 3)])
+    faces["n"] = 3
+    faces["corners"] = cells.reshape(-1, 3)
     with open(a.out, "wb") as f:
         f.write(("ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\nproperty float y\n"
                  "property float z\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n"
                  % (len(points), len(faces))).encode())
-        f.write(b"".join(struct.pack("<3f", *p) for p in points))
-        f.write(b"".join(struct.pack("<B3i", 3, *t) for t in faces))
+        f.write(points.tobytes())
+        f.write(faces.tobytes())
     print("%s: %d vertices, %d triangles, posts %.1f x %.1f m" % (a.out, len(points), len(faces), dx, dy))
 
 
