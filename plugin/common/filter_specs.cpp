@@ -94,8 +94,8 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "Adaptive mode: refuse a collapse that would leave a large quad's centre or an edge's midpoint without the "
        "input along the quad's normal within this share of the bounding box diagonal (ours). With it the scans we "
        "measured are at least 99.5% projectable onto the input (the smooth moai halts at 104 quads, 99.8%); "
-       "without it the moai halts at 66 quads, 98.9% projectable. 0: no check, as in the paper (whose algorithm "
-       "is Reach 0 with Largest aspect 1 and Halting share 1)."},
+       "without it the moai halts at 66 quads, 98.9% projectable. 0: no check, as in the paper (with Largest "
+       "aspect 1 and Halting share 1: the paper's square quads, bound and halting rule)."},
       {kSimplify, "Tau", "Fitmap tolerance tau", ParamKind::Float, SimplifyParams().tau, 0.001, 0.5,
        "Adaptive mode: share of a neighbourhood allowed to face against its fitted plane in the M-fitmap "
        "(0.05 in the paper). Larger values allow larger faces."},
