@@ -562,19 +562,20 @@ SimplifyReport Simplifier::run() {
         continue;
       }
       cycle(e.face, e.k, pos, foot);
-      if (m_.n_faces() <= next_early) {
-        const double added = blocked_share() - base_share;
-        if (added >= 0.5 * opt_.halt_share) fine_above_ = double(next_scan = m_.n_faces());
-        next_early = m_.n_faces() / 2 > next_scan ? m_.n_faces() / 2 : 0;
-      }
-      if (measure && m_.n_faces() <= next_scan) {
-        // The share grows smoothly as the faces grow: measured again after a step of the
-        // faces that shrinks to 1% as it nears the halting share (about 15 measures a run).
+      if (measure && m_.n_faces() <= std::max(next_scan, next_early)) {
         rep_.blocked_share = blocked_share();
         const double added = rep_.blocked_share - base_share;
-        if ((halted = added >= opt_.halt_share)) break;
-        const double step = std::clamp(0.25 * (1 - added / opt_.halt_share), 0.01, 0.25);
-        next_scan = Index(double(m_.n_faces()) * (1 - step));
+        // Above the predicted range: the schedule starts here once the share is half way
+        // to the halt; until then the next halving is measured.
+        if (m_.n_faces() > next_scan && added >= 0.5 * opt_.halt_share) fine_above_ = double(next_scan = m_.n_faces());
+        next_early = m_.n_faces() / 2 > next_scan ? m_.n_faces() / 2 : 0;
+        if (m_.n_faces() <= next_scan) {
+          // The share grows smoothly as the faces grow: measured again after a step of the
+          // faces that shrinks to 1% as it nears the halting share (about 15 measures a run).
+          if ((halted = added >= opt_.halt_share)) break;
+          const double step = std::clamp(0.25 * (1 - added / opt_.halt_share), 0.01, 0.25);
+          next_scan = Index(double(m_.n_faces()) * (1 - step));
+        }
       }
       if (has_border_ && opt_.coarsen_border && !opt_.preserve_boundary && rep_.collapses % 64 == 0)
         coarsen_border();
