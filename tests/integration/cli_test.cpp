@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -216,13 +215,7 @@ TEST_F(Cli, a_result_crowded_with_holes_says_so) {
   // A grid with 3% of its triangles taken out keeps every hole open: asked for 300 quads
   // it stops above them with most of its vertices on the border, and the log says so,
   // with the remedy. The sphere, closed, gets no such note.
-  const TriMesh t = fixtures::tri_grid(60, 60);
-  TriMesh holey{t.positions, {}};
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (const auto& f : t.faces)
-    if (u(rng) >= 0.03) holey.faces.push_back(f);
-  write_tri_mesh_ply(p("holey.ply"), holey);
+  write_tri_mesh_ply(p("holey.ply"), fixtures::with_holes(fixtures::tri_grid(60, 60), 0.03, 5));
   CliRun r = run("simplify " + p("holey.ply") + " " + p("h.ply") + " --faces 300");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find(" holes or outlines, and "), std::string::npos) << r.out;

@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <fstream>
 #include <iostream>
-#include <random>
 
 #include <tbb/task_arena.h>
 
@@ -464,12 +463,8 @@ TEST(Adaptive, no_quad_folds_at_the_holes_of_a_damaged_scan) {
   };
   for (const Case& c : {Case{tri_sphere(60, 120), 2}, Case{tri_torus(120, 48), 2}, Case{tri_grid(80, 80, 0.3), 1}}) {
     SCOPED_TRACE(c.mesh.n_faces());
-    MeshFile file{c.mesh.positions, {}, {}};
-    std::mt19937 rng(c.seed);
-    std::uniform_real_distribution<double> u(0, 1);
-    for (const auto& f : c.mesh.faces)
-      if (u(rng) >= 0.1) file.triangles.push_back(f);
-    const Input in = prepare_input(file, "holes");
+    const TriMesh holey = with_holes(c.mesh, 0.1, c.seed);
+    const Input in = prepare_input(MeshFile{holey.positions, holey.faces, {}}, "holes");
     const ReferenceSurface ref(in.reference);
     for (const Index target : {300u, 0u}) {
       SimplifyParams params;
