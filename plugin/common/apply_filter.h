@@ -46,8 +46,11 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
   auto* m = md.mm();
   using Model = std::remove_pointer_t<decltype(m)>;
   if (!m) throw InvalidInput("there is no current mesh");
+  using Mesh = std::remove_reference_t<decltype(m->cm)>;
   const std::string name = layer_name(*m);
   require_faces(m->cm, name);
+  // The quads take the input's vertex colours (at their closest points on it).
+  const bool coloured = m->hasDataMask(Model::MM_VERTCOLOR);
   Outcome out;
   switch (id) {
     case kSimplify: {
@@ -55,13 +58,22 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
           run_simplification(mesh_file_of(m->cm), name, simplify_params_of(params), progress_of(cb), out);
       auto* result = md.addNewMesh("", QString::fromStdString(name + " quads"), true);
       assign_quads(result->cm, q);
+      if (coloured) {
+        Mesh input;
+        copy_live(input, m->cm);
+        result->updateDataMask(Model::MM_VERTCOLOR);
+        colour_from(input, result->cm);
+      }
       update_box(result);
       mark_polygonal(result);
       break;
     }
     case kConvert: {
       const QuadMesh q = run_conversion(mesh_file_of(m->cm), name, out);
+      Mesh input;
+      if (coloured) copy_live(input, m->cm);
       assign_quads(m->cm, q);
+      if (coloured) colour_from(input, m->cm);
       m->clearDataMask(Model::MM_VERTFACETOPO);
       update_box(m);
       mark_polygonal(m);

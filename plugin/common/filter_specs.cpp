@@ -28,8 +28,9 @@ const std::vector<FilterSpec>& filter_specs() {
        "bounding-box diagonal by default, so that the result stays projectable onto the input), and can stop "
        "by itself once these block the halting share of the surface (15% by default). <b>Fit vertices to the input</b> then moves the vertices off the input, along "
        "their normals, so that the quads lie closer to it. <br>The result goes to a new layer; the input layer is not changed. "
-       "The result is geometry only: to give it the input's vertex colours, run <i>Vertex Attribute Transfer</i> "
-       "from the input layer to it. Quads are stored "
+       "The quads take the input layer's vertex colours, if it has any, interpolated at each vertex's closest "
+       "point on it (as <i>Vertex Attribute Transfer</i> does); texture coordinates and other attributes are not "
+       "carried over. Quads are stored "
        "the MeshLab way, as triangle pairs with a faux shared edge: save as PLY with per-face flags, or as OBJ/OFF "
        "with polygons, to keep them." + kCitation},
       {kConvert, "Convert to Pure Quad Mesh", "meshing_tri_to_pure_quad",
@@ -41,7 +42,7 @@ const std::vector<FilterSpec>& filter_specs() {
        "across which the surface runs on straightest are removed; non-manifold vertices split; caps and "
        "single triangles folded back onto their neighbours mended by flipping an edge; small patches folded "
        "back onto the surface laid flat), and the log lists each repair. "
-       "The layer is replaced by its quads."},
+       "The layer is replaced by its quads, with its vertex colours if it has any."},
       {kFitmaps, "Compute Fitmaps", "compute_scalar_by_fitmap_per_vertex",
        "Computes the <b>S-fitmap</b> (how fast the error of fitting a plane grows with the radius around each "
        "vertex) and the <b>M-fitmap</b> (the largest radius around each vertex where a plane still faces the "

@@ -5,9 +5,15 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
+
+#include <vcg/complex/algorithms/closest.h>
+#include <vcg/complex/append.h>
+#include <vcg/space/index/grid_static_ptr.h>
 
 #include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/mesh/quad_mesh.h"
@@ -76,6 +82,48 @@ void assign_quads(CMesh& m, const QuadMesh& q) {
     t2.ClearAllF();
     t1.SetF(2);  // c2 -> c0
     t2.SetF(0);  // c0 -> c2
+  }
+}
+
+//! The live part of a layer, kept to colour the quads from once the layer changes (the
+//! grid colour_from() builds would index deleted faces too), with the per-face marks its
+//! closest-point search needs.
+template <class CMesh>
+void copy_live(CMesh& to, CMesh& from) {
+  vcg::tri::Append<CMesh, CMesh>::MeshCopy(to, from);
+  to.face.EnableMark();
+}
+
+//! Gives each vertex of `to` the colour of `from` at its closest point, interpolated over
+//! the triangle there, as MeshLab's Vertex Attribute Transfer does: the quads' vertices
+//! lie on the input surface, so a coloured scan stays coloured. \pre `from` has faces
+//! and no deleted ones (copy_live()).
+template <class CMesh>
+void colour_from(CMesh& from, CMesh& to) {
+  using Scalar = typename CMesh::ScalarType;
+  using Coord = typename CMesh::CoordType;
+  vcg::GridStaticPtr<typename CMesh::FaceType, Scalar> grid;
+  grid.Set(from.face.begin(), from.face.end());
+  for (auto& v : to.vert) {
+    if (v.IsD()) continue;
+    Scalar dist = 0;
+    Coord at;
+    const auto* f = vcg::tri::GetClosestFaceBase(from, grid, v.cP(), std::numeric_limits<Scalar>::max(), dist, at);
+    if (!f) continue;
+    Coord w;
+    // A triangle of no area has no barycentric coordinates: its nearest corner's colour.
+    if (!vcg::InterpolationParameters(*f, vcg::TriangleNormal(*f), at, w) || !std::isfinite(w[0]) ||
+        !std::isfinite(w[1]) || !std::isfinite(w[2])) {
+      int k = 0;
+      for (int i = 1; i < 3; ++i)
+        if (vcg::SquaredDistance(f->cP(i), at) < vcg::SquaredDistance(f->cP(k), at)) k = i;
+      w = Coord(0, 0, 0);
+      w[k] = 1;
+    }
+    for (int c = 0; c < 4; ++c) {
+      const double x = w[0] * f->cV(0)->cC()[c] + w[1] * f->cV(1)->cC()[c] + w[2] * f->cV(2)->cC()[c];
+      v.C()[c] = static_cast<unsigned char>(std::clamp(std::lround(x), 0L, 255L));
+    }
   }
 }
 

@@ -10,7 +10,8 @@
 #  - a fin on an edge (three triangles on it) is removed, and MeshLab's log says so;
 #  - a strip of triangles folded back onto a grid is laid flat, and the log says so;
 #  - the quads come out as polygonal layers that MeshLab's polygon filters accept;
-#  - MeshLab's own quads (its smart triangle pairing) are simplified.
+#  - MeshLab's own quads (its smart triangle pairing) are simplified;
+#  - a coloured layer's quads take its vertex colours.
 # Usage: meshlabserver_test.sh PLUGIN.so QUADSIMP_CLI REPO_DIR DATASETS_DIR
 set -euo pipefail
 plugin=$1 cli=$2 repo=$3 datasets=$4
@@ -293,6 +294,48 @@ if server -i "$bunny" -o "$work/paired.ply" -m ff -s "$work/paired.mlx" &&
   echo "ok: MeshLab's smart triangle pairing, then ours: 3000 quads"
 else
   fail "MeshLab's paired quads were not simplified"; cat "$work/server.log"
+fi
+
+# 8. A coloured layer's quads take its colours: the torus coloured by MeshLab's own colour
+#    function (red along x, green along y), simplified and saved with its vertex colours;
+#    each vertex's colour must match its position (two byte roundings plus interpolation).
+{
+  printf '<!DOCTYPE FilterScript>\n<FilterScript>\n <filter name="Per Vertex Color Function">\n'
+  printf '  <Param name="x" type="RichString" value="255*(x+1.35)/2.7"/>\n'
+  printf '  <Param name="y" type="RichString" value="255*(y+1.35)/2.7"/>\n'
+  printf '  <Param name="z" type="RichString" value="0"/>\n  <Param name="a" type="RichString" value="255"/>\n'
+  printf '  <Param name="onselected" type="RichBool" value="false"/>\n </filter>\n'
+  printf '%s\n</FilterScript>\n' "${simplification/value=\"3000\"/value=\"500\"}"
+} >"$work/coloured.mlx"
+if server -i "$work/torus.ply" -o "$work/coloured.ply" -m vc ff -s "$work/coloured.mlx" &&
+   python3 - "$work/coloured.ply" <<'PY'
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+end = data.index(b"end_header\n") + len(b"end_header\n")
+header = data[:end].decode("ascii").split("\n")
+assert "format binary_little_endian 1.0" in header, header[:3]
+count = next(int(l.split()[2]) for l in header if l.startswith("element vertex"))
+props = []
+for line in header[header.index(next(l for l in header if l.startswith("element vertex"))) + 1:]:
+    if not line.startswith("property"):
+        break
+    props.append(line.split()[1:])
+code = {"float": "f", "double": "d", "uchar": "B", "int": "i", "uint": "I"}
+fmt = "<" + "".join(code[t] for t, _ in props)
+names = [n for _, n in props]
+assert {"red", "green", "blue"} <= set(names), names
+worst = 0.0
+for v in range(count):
+    row = dict(zip(names, struct.unpack_from(fmt, data, end + v * struct.calcsize(fmt))))
+    worst = max(worst, abs(row["red"] / 255 - (row["x"] + 1.35) / 2.7), abs(row["green"] / 255 - (row["y"] + 1.35) / 2.7))
+    assert row["blue"] == 0, row
+print(f"{count} vertices, largest colour error {255 * worst:.2f} / 255")
+sys.exit(0 if worst < 3 / 255 else 1)
+PY
+then
+  echo "ok: the quads take the layer's vertex colours"
+else
+  fail "the quads did not take the coloured torus's colours"; cat "$work/server.log"
 fi
 
 if [ "$failures" -gt 0 ]; then echo "$failures failed"; exit 1; fi

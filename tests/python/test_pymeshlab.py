@@ -33,6 +33,7 @@ def test_simplification_on_the_bunny(bunny_path, target):
     out = ms.current_mesh()
     assert is_pure_quad(out)
     assert len(out.polygonal_face_list()) == target
+    assert not out.has_vertex_color(), "an input without colours gives quads without"
 
 
 def border_points(mesh):
@@ -221,24 +222,47 @@ def meshsets(bunny_path):
     return grid, bunny
 
 
-def test_vertex_attribute_transfer_gives_the_quads_the_inputs_colours(bunny_path):
-    """The result is geometry only; MeshLab's own transfer colours it and keeps the quads (README, Limits)."""
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(bunny_path)
+def colour_by_position(ms):
+    """Colours the current layer's vertices by position: red along x, green along y."""
     box = ms.current_mesh().bounding_box()
     lo, size = box.min(), box.max() - box.min()
     ms.compute_color_by_function_per_vertex(x=f"255*(x-({lo[0]}))/({size[0]})", y=f"255*(y-({lo[1]}))/({size[1]})",
                                             z="0")
-    ms.meshing_quad_mesh_simplification(targetfacenum=1000)
-    assert not ms.mesh(1).has_vertex_color()
-    ms.transfer_attributes_per_vertex(sourcemesh=0, targetmesh=1, colortransfer=True)
-    out = ms.mesh(1)
-    assert is_pure_quad(out) and len(out.polygonal_face_list()) == 1000
-    v, c = out.vertex_matrix(), out.vertex_color_matrix()
-    # Colours follow position on the input, and the quads' vertices lie on it. Each colour is cut
-    # to a byte twice (made, then transferred): under two steps of 255, plus interpolation.
+    return lo, size
+
+
+def assert_coloured_by_position(mesh, lo, size):
+    """Colours follow position on the input, and the quads' vertices lie on it. Each colour is cut
+    to a byte twice (made, then carried over): under two steps of 255, plus interpolation."""
+    assert mesh.has_vertex_color()
+    v, c = mesh.vertex_matrix(), mesh.vertex_color_matrix()
     assert np.abs(c[:, 0] - (v[:, 0] - lo[0]) / size[0]).max() < 3 / 255
     assert np.abs(c[:, 1] - (v[:, 1] - lo[1]) / size[1]).max() < 3 / 255
+    assert np.abs(c[:, 2]).max() == 0 and np.abs(c[:, 3] - 1).max() == 0
+
+
+def test_the_quads_take_the_inputs_colours(bunny_path):
+    for adaptive in (False, True):
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(bunny_path)
+        lo, size = colour_by_position(ms)
+        ms.meshing_quad_mesh_simplification(targetfacenum=1000, adaptive=adaptive)
+        out = ms.mesh(1)
+        assert is_pure_quad(out) and len(out.polygonal_face_list()) == 1000
+        assert_coloured_by_position(out, lo, size)
+        # MeshLab's own transfer, which the README named before, gives the same colours.
+        ours = out.vertex_color_matrix()
+        ms.transfer_attributes_per_vertex(sourcemesh=0, targetmesh=1, colortransfer=True)
+        assert np.abs(ms.mesh(1).vertex_color_matrix() - ours).max() <= 1.5 / 255
+
+
+def test_conversion_keeps_the_layers_colours(bunny_path):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(bunny_path)
+    lo, size = colour_by_position(ms)
+    ms.meshing_tri_to_pure_quad()
+    assert is_pure_quad(ms.current_mesh())
+    assert_coloured_by_position(ms.current_mesh(), lo, size)
 
 
 def test_conversion(bunny_path):
