@@ -107,13 +107,17 @@ void colour_from(CMesh& from, CMesh& to) {
   for (auto& v : to.vert) {
     if (v.IsD()) continue;
     Scalar dist = 0;
-    Coord at;
+    Coord at(0, 0, 0);
     const auto* f = vcg::tri::GetClosestFaceBase(from, grid, v.cP(), std::numeric_limits<Scalar>::max(), dist, at);
     if (!f) continue;
-    Coord w;
-    // A triangle of no area has no barycentric coordinates: its nearest corner's colour.
-    if (!vcg::InterpolationParameters(*f, vcg::TriangleNormal(*f), at, w) || !std::isfinite(w[0]) ||
-        !std::isfinite(w[1]) || !std::isfinite(w[2])) {
+    // The closest point lies on the triangle, up to rounding: its weights are clamped to
+    // it. A triangle of no area has none: its nearest corner's colour.
+    Coord w(0, 0, 0);
+    vcg::InterpolationParameters(*f, vcg::TriangleNormal(*f), at, w);
+    for (int i = 0; i < 3; ++i) w[i] = std::isfinite(w[i]) ? std::max(w[i], Scalar(0)) : Scalar(0);
+    if (const Scalar sum = w[0] + w[1] + w[2]; sum > 0) {
+      w /= sum;
+    } else {
       int k = 0;
       for (int i = 1; i < 3; ++i)
         if (vcg::SquaredDistance(f->cP(i), at) < vcg::SquaredDistance(f->cP(k), at)) k = i;
