@@ -34,10 +34,12 @@ xdotool mousemove 560 211 && sleep 0.3 && xdotool mousemove 622 211 click 1
 sleep 2
 import -window root -crop 853x725+0+0 "$here/docs/meshlab_simplification_dialog.png"
 # Apply with the defaults, close the dialog, and show the new layer as a wireframe
-# (MeshLab hides faux edges there, so the quads show).
-xdotool mousemove 401 600 click 1   # Apply
+# (MeshLab hides faux edges there, so the quads show). Apply and Close are the dialog's
+# bottom row, right and left: found from its geometry, which grows with its parameters.
+eval "$(xdotool search --name "Quad Mesh Simplification" getwindowgeometry --shell | tail -n 6)"
+xdotool mousemove $((X + 3 * WIDTH / 4)) $((Y + HEIGHT - 18)) click 1   # Apply
 sleep 6
-xdotool mousemove 138 600 click 1   # Close
+xdotool mousemove $((X + WIDTH / 4)) $((Y + HEIGHT - 18)) click 1   # Close
 sleep 1
 xdotool mousemove 471 114 click 1   # hide the input layer
 sleep 1
