@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -59,10 +60,8 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
       auto* result = md.addNewMesh("", QString::fromStdString(name + " quads"), true);
       assign_quads(result->cm, q);
       if (coloured) {
-        Mesh input;
-        copy_live(input, m->cm);
         result->updateDataMask(Model::MM_VERTCOLOR);
-        colour_from(input, result->cm);
+        LayerColours<Mesh>(m->cm).paint(result->cm);
       }
       update_box(result);
       mark_polygonal(result);
@@ -70,10 +69,10 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
     }
     case kConvert: {
       const QuadMesh q = run_conversion(mesh_file_of(m->cm), name, out);
-      Mesh input;
-      if (coloured) copy_live(input, m->cm);
+      std::optional<LayerColours<Mesh>> colours;
+      if (coloured) colours.emplace(m->cm);
       assign_quads(m->cm, q);
-      if (coloured) colour_from(input, m->cm);
+      if (colours) colours->paint(m->cm);
       m->clearDataMask(Model::MM_VERTFACETOPO);
       update_box(m);
       mark_polygonal(m);

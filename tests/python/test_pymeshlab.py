@@ -256,6 +256,19 @@ def test_the_quads_take_the_inputs_colours(bunny_path):
         assert np.abs(ms.mesh(1).vertex_color_matrix() - ours).max() <= 1.5 / 255
 
 
+def test_a_layer_of_one_colour_gives_quads_of_that_colour():
+    """pymeshlab gives a mesh made from arrays one default colour; a layer of one colour passes it on."""
+    grid = open_grid()
+    colour = np.array([0.2, 0.4, 0.6, 1.0])
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=grid.vertex_matrix(), face_matrix=grid.face_matrix(),
+                               v_color_matrix=np.tile(colour, (grid.vertex_number(), 1))), "grid")
+    ms.meshing_quad_mesh_simplification(targetfacenum=300)
+    out = ms.mesh(1)
+    assert is_pure_quad(out) and out.has_vertex_color()
+    assert np.abs(out.vertex_color_matrix() - colour).max() < 1 / 255
+
+
 def test_conversion_keeps_the_layers_colours(bunny_path):
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(bunny_path)
