@@ -61,7 +61,7 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
       assign_quads(result->cm, q);
       if (coloured) {
         result->updateDataMask(Model::MM_VERTCOLOR);
-        LayerColours<Mesh>(m->cm).paint(result->cm);
+        paint(VertexColours<Mesh>(m->cm), result->cm);
       }
       update_box(result);
       mark_polygonal(result);
@@ -69,10 +69,10 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
     }
     case kConvert: {
       const QuadMesh q = run_conversion(mesh_file_of(m->cm), name, out);
-      std::optional<LayerColours<Mesh>> colours;
+      std::optional<VertexColours<Mesh>> colours;
       if (coloured) colours.emplace(m->cm);
       assign_quads(m->cm, q);
-      if (colours) colours->paint(m->cm);
+      if (colours) paint(*colours, m->cm);
       m->clearDataMask(Model::MM_VERTFACETOPO);
       update_box(m);
       mark_polygonal(m);

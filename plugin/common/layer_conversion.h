@@ -5,16 +5,11 @@
 #pragma once
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
-#include <limits>
 #include <string>
 #include <vector>
 
-#include <vcg/complex/algorithms/closest.h>
-#include <vcg/complex/append.h>
-#include <vcg/space/index/grid_static_ptr.h>
-
+#include "quadsimp/io/vertex_colours.h"
 #include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/mesh/quad_mesh.h"
 #include "quadsimp/simplify/pipeline.h"
@@ -85,69 +80,12 @@ void assign_quads(CMesh& m, const QuadMesh& q) {
   }
 }
 
-//! A layer's vertex colours, kept to colour its quads with once the layer has changed: the
-//! quads' vertices lie on the input surface, and each takes the colour at its closest
-//! point there, interpolated over the triangle, as MeshLab's Vertex Attribute Transfer
-//! does. A layer of one colour (pymeshlab gives meshes made from arrays a default one)
-//! passes it on without a copy or a search.
-template <class CMesh>
-class LayerColours {
- public:
-  explicit LayerColours(CMesh& layer) {
-    for (const auto& v : layer.vert) {
-      if (v.IsD()) continue;
-      if (!seen_) colour_ = v.cC(), seen_ = true;
-      if (v.cC() != colour_) {
-        // The grid indexes deleted faces too: a copy of the live part, with the per-face
-        // marks the closest-point search needs.
-        vcg::tri::Append<CMesh, CMesh>::MeshCopy(copy_, layer);
-        copy_.face.EnableMark();
-        return;
-      }
-    }
-  }
-
-  void paint(CMesh& quads) {
-    if (copy_.fn == 0) {
-      for (auto& v : quads.vert) v.C() = colour_;
-      return;
-    }
-    using Scalar = typename CMesh::ScalarType;
-    using Coord = typename CMesh::CoordType;
-    vcg::GridStaticPtr<typename CMesh::FaceType, Scalar> grid;
-    grid.Set(copy_.face.begin(), copy_.face.end());
-    for (auto& v : quads.vert) {
-      if (v.IsD()) continue;
-      Scalar dist = 0;
-      Coord at(0, 0, 0);
-      const auto* f = vcg::tri::GetClosestFaceBase(copy_, grid, v.cP(), std::numeric_limits<Scalar>::max(), dist, at);
-      if (!f) continue;
-      // The closest point lies on the triangle, up to rounding: its weights are clamped to
-      // it. A triangle of no area has none: its nearest corner's colour.
-      Coord w(0, 0, 0);
-      vcg::InterpolationParameters(*f, vcg::TriangleNormal(*f), at, w);
-      for (int i = 0; i < 3; ++i) w[i] = std::isfinite(w[i]) ? std::max(w[i], Scalar(0)) : Scalar(0);
-      if (const Scalar sum = w[0] + w[1] + w[2]; sum > 0) {
-        w /= sum;
-      } else {
-        int k = 0;
-        for (int i = 1; i < 3; ++i)
-          if (vcg::SquaredDistance(f->cP(i), at) < vcg::SquaredDistance(f->cP(k), at)) k = i;
-        w = Coord(0, 0, 0);
-        w[k] = 1;
-      }
-      for (int c = 0; c < 4; ++c) {
-        const double x = w[0] * f->cV(0)->cC()[c] + w[1] * f->cV(1)->cC()[c] + w[2] * f->cV(2)->cC()[c];
-        v.C()[c] = static_cast<unsigned char>(std::clamp(std::lround(x), 0L, 255L));
-      }
-    }
-  }
-
- private:
-  CMesh copy_;
-  vcg::Color4b colour_;
-  bool seen_ = false;
-};
+//! Colours the vertices of `quads` from `colours` (VertexColours of the input layer).
+template <class Colours, class CMesh>
+void paint(Colours&& colours, CMesh& quads) {
+  for (auto& v : quads.vert)
+    if (!v.IsD()) v.C() = colours.at(v.cP());
+}
 
 //! Refuses a layer without faces with a message that says what it probably is.
 template <class CMesh>

@@ -82,6 +82,53 @@ TEST_F(Cli, convert_writes_quads) {
   }
 }
 
+// A PLY's vertex colours reach the quads (each vertex the colour at its closest point on
+// the input, as the MeshLab filters give it), in every format written; a mesh without
+// colours gives quads without.
+TEST_F(Cli, vertex_colours_reach_the_quads) {
+  const TriMesh sphere = fixtures::tri_sphere(24, 32);
+  std::string ply = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(sphere.n_vertices()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\n"
+                    "property uchar green\nproperty uchar blue\nelement face " +
+                    std::to_string(sphere.n_faces()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  // Red along x, green along y, over the unit sphere's [-1, 1].
+  const auto shade = [](double t) { return std::lround(127.5 * (t + 1)); };
+  for (const Vec3& v : sphere.positions)
+    ply += std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) + " " +
+           std::to_string(shade(v.x())) + " " + std::to_string(shade(v.y())) + " 0\n";
+  for (const auto& f : sphere.faces)
+    ply += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
+  const std::string in = write("coloured.ply", ply);
+  for (const char* command : {"simplify", "convert"}) {
+    const std::string out = p(std::string(command) + ".ply");
+    const CliRun r = run(std::string(command) + " " + in + " " + out + (command[0] == 's' ? " --faces 150 -q" : " -q"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    const MeshFile f = read_mesh(out);
+    ASSERT_EQ(f.colours.size(), f.positions.size()) << command;
+    double worst = 0;
+    for (std::size_t i = 0; i < f.positions.size(); ++i) {
+      const Vec3& x = f.positions[i];
+      worst = std::max({worst, std::abs(f.colours[i][0] - 127.5 * (x.x() + 1)),
+                        std::abs(f.colours[i][1] - 127.5 * (x.y() + 1))});
+      EXPECT_EQ(f.colours[i][2], 0);
+      EXPECT_EQ(f.colours[i][3], 255);
+    }
+    // Quads over a sphere of 24 x 32 cells: their vertices lie on its triangles, whose
+    // colours vary linearly between corners a few units of 255 apart.
+    EXPECT_LT(worst, 3.0) << command;
+  }
+  ASSERT_EQ(run("simplify " + in + " " + p("out.obj") + " --faces 150 -q").code, 0);
+  ASSERT_EQ(run("simplify " + in + " " + p("out.off") + " --faces 150 -q").code, 0);
+  const std::string obj = read("out.obj"), off = read("out.off");
+  const std::size_t v_at = obj.find("\nv ") + 1;
+  const std::string first_v = obj.substr(v_at, obj.find('\n', v_at) - v_at);
+  EXPECT_EQ(std::count(first_v.begin(), first_v.end(), ' '), 6) << first_v;  // v x y z r g b
+  EXPECT_EQ(off.rfind("COFF", 0), 0u);
+  ASSERT_EQ(run("simplify " + input_ + " " + p("plain.ply") + " --faces 60 -q").code, 0);
+  EXPECT_TRUE(read_mesh(p("plain.ply")).colours.empty());
+  EXPECT_EQ(read("plain.ply").find("red"), std::string::npos);
+}
+
 TEST_F(Cli, bad_arguments_exit_2) {
   EXPECT_EQ(run("").code, 2);
   EXPECT_EQ(run("convert").code, 2);

@@ -96,6 +96,29 @@ TEST_F(MeshIo, quad_round_trip_every_output_format) {
   }
 }
 
+// Vertex colours as bytes with alpha (MeshLab's) or as fractions in floats, in whichever
+// order the properties come; a PLY without them has none.
+TEST_F(MeshIo, ply_vertex_colours_as_bytes_or_fractions) {
+  const std::string bytes = write("bytes.ply",
+                                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty uchar alpha\nproperty float x\n"
+                                  "property float y\nproperty uchar blue\nproperty float z\nproperty uchar green\n"
+                                  "property uchar red\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                  "end_header\n9 0 0 3 0 2 1\n8 1 0 6 0 5 4\n7 0 1 30 0 20 10\n3 0 1 2\n");
+  const MeshFile b = read_mesh(bytes);
+  ASSERT_EQ(b.colours.size(), 3u);
+  EXPECT_EQ(b.colours[0], (Colour{1, 2, 3, 9}));
+  EXPECT_EQ(b.colours[2], (Colour{10, 20, 30, 7}));
+  const MeshFile f = read_mesh(write("fractions.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                                      "property float y\nproperty float z\nproperty float red\n"
+                                                      "property float green\nproperty float blue\nelement face 1\n"
+                                                      "property list uchar int vertex_indices\nend_header\n"
+                                                      "0 0 0 1 0.5 0\n1 0 0 0 0 0\n0 1 0 0 0 2\n3 0 1 2\n"));
+  ASSERT_EQ(f.colours.size(), 3u);
+  EXPECT_EQ(f.colours[0], (Colour{255, 128, 0, 255}));
+  EXPECT_EQ(f.colours[2], (Colour{0, 0, 255, 255}));  // out of range: clamped
+  EXPECT_TRUE(read_mesh(write("plain.ply", ply_header(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")).colours.empty());
+}
+
 TEST_F(MeshIo, obj_keeps_every_bit_of_tiny_and_far_coordinates) {
   // vcglib's OBJ writer printed 16 fixed decimals: in units of 1e-9, 7 digits were left.
   for (const double scale : {1e-12, 1.0, 1e8}) {

@@ -15,13 +15,21 @@ namespace qs {
 //! files (triangle strips, range grids) through vcglib's importers. Quads come
 //! back as quads whether the file has quad polygons or MeshLab's triangle pairs with
 //! faux-edge face flags (PLY saved with per-face flags); other polygons as triangles.
+//! A PLY file's vertex colours come back too (MeshFile::colours).
 //! \throw InvalidInput "PATH: reason" for unreadable, truncated or unknown files.
 MeshFile read_mesh(const std::string& path);
 
-//! Writes the quads of `mesh` as PLY (ASCII), OBJ or OFF, chosen by extension.
-//! The file appears atomically: written to a temporary beside it, then renamed.
+//! Writes the quads of `mesh` as PLY (ASCII), OBJ or OFF, chosen by extension, with
+//! per-vertex `colours` if given (one per vertex id of `mesh`; OBJ: after the
+//! coordinates, as MeshLab writes them). The file appears atomically: written to a
+//! temporary beside it, then renamed.
 //! \throw InvalidInput for an unknown extension or a file that cannot be written.
-void write_quad_mesh(const std::string& path, const QuadMesh& mesh);
+void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const std::vector<Colour>& colours = {});
+
+//! The colours of `from` (read from a PLY file's vertices) at the quads' vertices: each
+//! the colour at its closest point on `from`'s surface, as the MeshLab filters give them
+//! (vertex_colours.h). One per vertex id of `quads`; none if `from` has no colours.
+std::vector<Colour> colours_of_quads(const MeshFile& from, const QuadMesh& quads);
 
 //! Writes a triangle mesh as PLY with per-vertex float properties and a colour ramp
 //! of the first property (for viewing fields in MeshLab). Atomic like write_quad_mesh.

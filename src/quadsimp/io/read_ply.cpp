@@ -9,6 +9,7 @@
 // other properties and elements are skipped.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -217,6 +218,7 @@ std::optional<MeshFile> read_ply(const std::string& path) {
 
   Values values(std::string_view(data).substr(header.data), header.format);
   std::vector<Vec3> positions;
+  std::vector<Colour> colours;
   std::vector<std::array<Index, 3>> triangles;
   std::vector<std::uint8_t> faux;
   // Faces, flat, checked and fanned once all vertices are known (they may come first).
@@ -228,6 +230,9 @@ std::optional<MeshFile> read_ply(const std::string& path) {
     const bool vertex = e.name == "vertex", face = e.name == "face";
     if ((vertex && have_vertices) || (face && have_faces)) fail("two " + detail::quoted(e.name) + " elements");
     const int xyz[3] = {e.find("x"), e.find("y"), e.find("z")};
+    // Colours as MeshLab writes them (bytes; alpha optional), or as fractions in floats.
+    const int rgba[4] = {e.find("red"), e.find("green"), e.find("blue"), e.find("alpha")};
+    const bool coloured = vertex && rgba[0] >= 0 && rgba[1] >= 0 && rgba[2] >= 0;
     if (vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)) fail("vertices without x, y and z");
     int list = face ? e.find("vertex_indices") : -1;
     if (face && list < 0) list = e.find("vertex_index");
@@ -237,10 +242,12 @@ std::optional<MeshFile> read_ply(const std::string& path) {
     have_faces |= face;
     if (e.properties.empty()) continue;  // nothing to read, however many
     if (vertex) positions.reserve(std::size_t(e.count));
+    if (coloured) colours.reserve(std::size_t(e.count));
     if (face) polygon_start.reserve(std::size_t(e.count) + 1);
 
     for (long long i = 0; i < e.count; ++i) {
       Vec3 p = Vec3::Zero();
+      Colour colour = {0, 0, 0, 255};
       std::uint32_t face_flags = 0;
       const std::size_t first_corner = corners.size();
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
@@ -250,6 +257,11 @@ std::optional<MeshFile> read_ply(const std::string& path) {
           if (!values.next(prop.value, x)) fail("its data ends, or is not a number, in " + detail::quoted(e.name) + " " + std::to_string(i));
           for (int c = 0; c < 3; ++c)
             if (vertex && int(k) == xyz[c]) p[c] = x;
+          for (int c = 0; c < 4; ++c)
+            if (coloured && int(k) == rgba[c]) {
+              const bool fraction = prop.value == Type::f32 || prop.value == Type::f64;
+              colour[std::size_t(c)] = std::uint8_t(std::clamp(std::lround(fraction ? 255 * x : x), 0L, 255L));
+            }
           if (face && int(k) == flags) face_flags = std::uint32_t(std::int64_t(x));
           continue;
         }
@@ -266,6 +278,7 @@ std::optional<MeshFile> read_ply(const std::string& path) {
         }
       }
       if (vertex) positions.push_back(p);
+      if (coloured) colours.push_back(colour);
       if (face) {
         const std::size_t n = corners.size() - first_corner;
         if (n < 3) fail("face " + std::to_string(i) + " has " + std::to_string(n) + " corners");
@@ -289,7 +302,9 @@ std::optional<MeshFile> read_ply(const std::string& path) {
     detail::fan(corners.data() + polygon_start[i], n, triangles, faux);
     if (n == 3) faux[first] |= flag_faux[i];  // the bits name a triangle's edges
   }
-  return pair_faux_triangles(std::move(positions), std::move(triangles), faux);
+  MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux);
+  out.colours = std::move(colours);
+  return out;
 }
 
 }  // namespace qs

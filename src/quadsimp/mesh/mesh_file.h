@@ -12,10 +12,13 @@ namespace qs {
 //! A mesh as a file or a host application holds it, before any cleaning: its quads and
 //! its other faces as triangles (a polygon of five or more corners fanned); a pure quad
 //! mesh has quads alone.
+using Colour = std::array<std::uint8_t, 4>;  //!< red, green, blue, alpha
+
 struct MeshFile {
   std::vector<Vec3> positions;
   std::vector<std::array<Index, 3>> triangles;
   std::vector<std::array<Index, 4>> quads;
+  std::vector<Colour> colours = {};  //!< one per position, or none
   bool is_pure_quad() const { return !quads.empty() && triangles.empty(); }
 };
 

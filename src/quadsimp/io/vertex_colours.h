@@ -1,0 +1,92 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+// Vertex colours carried from an input mesh to its quads, on vcglib's meshes. A template
+// header: qs_io compiles it with its vcglib, each MeshLab plugin with MeshLab's (they
+// never link qs_io), so the CLI and both filters colour quads the same way.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <vcg/complex/algorithms/closest.h>
+#include <vcg/complex/algorithms/update/normal.h>
+#include <vcg/complex/append.h>
+#include <vcg/space/index/grid_static_ptr.h>
+
+namespace qs {
+
+namespace detail {
+// The closest-point search marks faces: MeshLab's meshes hold marks as an optional
+// component, to enable; ours have them built in.
+template <class Mesh>
+auto enable_marks(Mesh& m, int) -> decltype(m.face.EnableMark(), void()) {
+  m.face.EnableMark();
+}
+template <class Mesh>
+void enable_marks(Mesh&, long) {}
+}  // namespace detail
+
+//! A mesh's vertex colours, kept to colour its quads with once the mesh has changed: the
+//! quads' vertices lie on the input surface, and each takes the colour at its closest
+//! point there, interpolated over the triangle, as MeshLab's Vertex Attribute Transfer
+//! does. A mesh of one colour (pymeshlab gives meshes made from arrays a default one)
+//! passes it on without a copy or a search. \pre Mesh's faces have normals.
+template <class Mesh>
+class VertexColours {
+ public:
+  using Coord = typename Mesh::CoordType;
+
+  explicit VertexColours(Mesh& mesh) {
+    bool seen = false;
+    for (const auto& v : mesh.vert) {
+      if (v.IsD()) continue;
+      if (!seen) colour_ = v.cC(), seen = true;
+      if (v.cC() != colour_) {
+        // The grid indexes deleted faces too: a copy of the live part. vcglib's
+        // point-to-triangle distance reads unit face normals, which the layer's may not be.
+        vcg::tri::Append<Mesh, Mesh>::MeshCopy(copy_, mesh);
+        detail::enable_marks(copy_, 0);
+        vcg::tri::UpdateNormal<Mesh>::PerFaceNormalized(copy_);
+        grid_.Set(copy_.face.begin(), copy_.face.end());
+        return;
+      }
+    }
+  }
+
+  //! The colour at the point of the mesh closest to p.
+  vcg::Color4b at(const Coord& p) {
+    if (copy_.fn == 0) return colour_;
+    using Scalar = typename Mesh::ScalarType;
+    Scalar dist = 0;
+    Coord foot(0, 0, 0);
+    const auto* f = vcg::tri::GetClosestFaceBase(copy_, grid_, p, std::numeric_limits<Scalar>::max(), dist, foot);
+    if (!f) return colour_;
+    // The closest point lies on the triangle, up to rounding: its weights are clamped to
+    // it. A triangle of no area has none: its nearest corner's colour.
+    Coord w(0, 0, 0);
+    vcg::InterpolationParameters(*f, vcg::TriangleNormal(*f), foot, w);
+    for (int i = 0; i < 3; ++i) w[i] = std::isfinite(w[i]) ? std::max(w[i], Scalar(0)) : Scalar(0);
+    if (const Scalar sum = w[0] + w[1] + w[2]; sum > 0) {
+      w /= sum;
+    } else {
+      int k = 0;
+      for (int i = 1; i < 3; ++i)
+        if (vcg::SquaredDistance(f->cP(i), foot) < vcg::SquaredDistance(f->cP(k), foot)) k = i;
+      w = Coord(0, 0, 0);
+      w[k] = 1;
+    }
+    vcg::Color4b c;
+    for (int k = 0; k < 4; ++k) {
+      const double x = w[0] * f->cV(0)->cC()[k] + w[1] * f->cV(1)->cC()[k] + w[2] * f->cV(2)->cC()[k];
+      c[k] = static_cast<unsigned char>(std::clamp(std::lround(x), 0L, 255L));
+    }
+    return c;
+  }
+
+ private:
+  Mesh copy_;
+  vcg::GridStaticPtr<typename Mesh::FaceType, typename Mesh::ScalarType> grid_;
+  vcg::Color4b colour_;
+};
+
+}  // namespace qs
