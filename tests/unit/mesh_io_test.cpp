@@ -119,6 +119,35 @@ TEST_F(MeshIo, ply_vertex_colours_as_bytes_or_fractions) {
   EXPECT_TRUE(read_mesh(write("plain.ply", ply_header(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")).colours.empty());
 }
 
+// Colours written with the quads (PLY properties, COFF, OBJ's v x y z r g b) read back
+// the same in every format.
+TEST_F(MeshIo, vertex_colours_round_trip_every_output_format) {
+  const QuadMesh m = grid_with_hole(4);
+  std::vector<Colour> colours(m.vertex_capacity());
+  for (Index v = 0; v < m.vertex_capacity(); ++v)
+    colours[v] = {std::uint8_t(10 * v), std::uint8_t(255 - 7 * v), std::uint8_t(v % 3 * 100), std::uint8_t(200 + v)};
+  for (const char* ext : {"ply", "obj", "off"}) {
+    const std::string p = path(std::string("grid.") + ext);
+    write_quad_mesh(p, m, colours);
+    SCOPED_TRACE(ext);
+    const MeshFile f = read_mesh(p);
+    ASSERT_EQ(f.colours.size(), f.positions.size());
+    for (std::size_t i = 0; i < f.positions.size(); ++i) {
+      // Vertices are written in id order; OBJ has no alpha.
+      const Colour want = colours[i];
+      EXPECT_EQ(f.colours[i][0], want[0]);
+      EXPECT_EQ(f.colours[i][1], want[1]);
+      EXPECT_EQ(f.colours[i][2], want[2]);
+      EXPECT_EQ(f.colours[i][3], std::string(ext) == "obj" ? 255 : want[3]);
+    }
+  }
+  // An OBJ where one vertex has no colour, and a COFF vertex without one: no colours.
+  const std::string tri = "v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0 0 0 1\nf 1 2 3\n";
+  EXPECT_TRUE(read_mesh(write("part.obj", tri)).colours.empty());
+  const std::string off = "COFF\n3 1 0\n0 0 0 255 0 0\n1 0 0\n0 1 0 0 0 255\n3 0 1 2\n";
+  EXPECT_TRUE(read_mesh(write("part.off", off)).colours.empty());
+}
+
 TEST_F(MeshIo, obj_keeps_every_bit_of_tiny_and_far_coordinates) {
   // vcglib's OBJ writer printed 16 fixed decimals: in units of 1e-9, 7 digits were left.
   for (const double scale : {1e-12, 1.0, 1e8}) {

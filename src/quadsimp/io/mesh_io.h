@@ -15,7 +15,8 @@ namespace qs {
 //! files (triangle strips, range grids) through vcglib's importers. Quads come
 //! back as quads whether the file has quad polygons or MeshLab's triangle pairs with
 //! faux-edge face flags (PLY saved with per-face flags); other polygons as triangles.
-//! A PLY file's vertex colours come back too (MeshFile::colours).
+//! Vertex colours come back too (MeshFile::colours): PLY's, COFF's, and OBJ's
+//! `v x y z r g b` (MeshLab's extension), where every vertex has one.
 //! \throw InvalidInput "PATH: reason" for unreadable, truncated or unknown files.
 MeshFile read_mesh(const std::string& path);
 
@@ -26,7 +27,7 @@ MeshFile read_mesh(const std::string& path);
 //! \throw InvalidInput for an unknown extension or a file that cannot be written.
 void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const std::vector<Colour>& colours = {});
 
-//! The colours of `from` (read from a PLY file's vertices) at the quads' vertices: each
+//! The colours of `from` (read_mesh()'s vertex colours) at the quads' vertices: each
 //! the colour at its closest point on `from`'s surface, as the MeshLab filters give them
 //! (vertex_colours.h). One per vertex id of `quads`; none if `from` has no colours.
 std::vector<Colour> colours_of_quads(const MeshFile& from, const QuadMesh& quads);

@@ -15,6 +15,10 @@ namespace qs {
 MeshFile read_obj(const std::string& path) {
   detail::TextLines in(path);
   std::vector<Vec3> positions;
+  // Vertex colours after the coordinates, as fractions (MeshLab's extension); kept only if
+  // every vertex has one.
+  std::vector<Colour> colours;
+  bool coloured = true;
   std::vector<std::array<Index, 3>> triangles;
   std::vector<std::uint8_t> faux;
   std::vector<Index> corners;
@@ -23,6 +27,8 @@ MeshFile read_obj(const std::string& path) {
     const std::string_view kw = in[0];
     if (kw == "v") {
       positions.push_back(in.position(1));
+      Colour c;
+      if (coloured && (coloured = in.colour(4, true, c))) colours.push_back(c);
     } else if (kw == "f" || kw == "q") {
       // Corners count from 1, or back from -1, over the vertices above the line; the
       // zero-based QOBJ variant's "q" quads count from 0.
@@ -40,7 +46,9 @@ MeshFile read_obj(const std::string& path) {
       detail::fan(corners.data(), corners.size(), triangles, faux);  // fewer than three corners: no face
     }
   }
-  return pair_faux_triangles(std::move(positions), std::move(triangles), faux);
+  MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux);
+  if (coloured) out.colours = std::move(colours);
+  return out;
 }
 
 }  // namespace qs

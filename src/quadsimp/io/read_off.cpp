@@ -29,6 +29,10 @@ MeshFile read_off(const std::string& path) {
   if (off == std::string_view::npos) in.fail(detail::quoted(word) + " is not an OFF header");
   for (const char c : word.substr(0, off))
     if (c == '4' || c == 'n') in.fail(detail::quoted(word) + ": only three-dimensional OFF is read");
+  // COFF: each vertex's colour after its position (and its normal, in CNOFF); kept only
+  // if every vertex has one. (Read from the header now: `word` goes with its line.)
+  bool coloured = word.substr(0, off).find('C') != std::string_view::npos;
+  const std::size_t colour_at = word.substr(0, off).find('N') != std::string_view::npos ? 6 : 3;
   std::vector<std::string_view> counts(in.fields().begin() + 1, in.fields().end());
   if (off + 3 < word.size()) counts.insert(counts.begin(), word.substr(off + 3));
   if (!counts.empty() && counts[0] == "BINARY") in.fail("binary OFF is not read (ASCII only)");
@@ -51,10 +55,14 @@ MeshFile read_off(const std::string& path) {
   triangles.reserve(std::size_t(std::min(nf, bytes / 8)));
   faux.reserve(triangles.capacity());
 
+  std::vector<Colour> colours;
   for (long long i = 0; i < nv; ++i) {
     if (!in.next()) in.ends("after " + std::to_string(i) + " of its " + std::to_string(nv) + " vertices");
     positions.push_back(in.position(0));
+    Colour c;
+    if (coloured && (coloured = in.colour(colour_at, false, c))) colours.push_back(c);
   }
+  if (!coloured) colours.clear();
 
   std::vector<Index> corners;
   for (long long f = 0; f < nf; ++f) {
@@ -78,7 +86,9 @@ MeshFile read_off(const std::string& path) {
     }
     if (n > 2) detail::fan(corners.data(), corners.size(), triangles, faux);  // two corners: an edge, not a face
   }
-  return pair_faux_triangles(std::move(positions), std::move(triangles), faux);
+  MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux);
+  out.colours = std::move(colours);
+  return out;
 }
 
 }  // namespace qs

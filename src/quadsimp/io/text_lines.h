@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <string>
@@ -60,6 +61,23 @@ class TextLines {
       if (!parse_number(fields_[from + k], p[k]))
         fail(quoted(fields_[from + k]) + " is not a number (a vertex coordinate)");
     return p;
+  }
+
+  //! Fields from `from` on as a colour (red, green, blue, and alpha if a fourth field
+  //! follows): fractions of 1 if `fractions`, else bytes, or fractions where a field
+  //! has a decimal point or an exponent. False if three numbers are not there.
+  bool colour(std::size_t from, bool fractions, std::array<std::uint8_t, 4>& c) const {
+    if (fields_.size() < from + 3) return false;
+    const std::size_t n = std::min<std::size_t>(4, fields_.size() - from);
+    c[3] = 255;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::string_view f = fields_[from + k];
+      double x;
+      if (!parse_number(f, x)) return false;
+      if (fractions || f.find_first_of(".eE") != std::string_view::npos) x *= 255;
+      c[k] = std::uint8_t(std::clamp(std::lround(x), 0L, 255L));
+    }
+    return true;
   }
 
   //! The first `length` characters of field i as a whole number; `what` names it in the
