@@ -260,7 +260,7 @@ std::vector<Colour> colours_of_quads(const MeshFile& from, const QuadMesh& quads
     for (int k = 0; k < 3; ++k) fi->V(k) = &m.vert[f[std::size_t(k)]];
     ++fi;
   }
-  VertexColours<TMesh> source(m);
+  VertexColours<TMesh> source(m, VertexColours<TMesh>::Use::in_place);
   std::vector<Colour> out(quads.vertex_capacity(), Colour{0, 0, 0, 255});
   for (Index v = 0; v < quads.vertex_capacity(); ++v) {
     if (!quads.is_vertex_live(v)) continue;

@@ -35,31 +35,39 @@ template <class Mesh>
 class VertexColours {
  public:
   using Coord = typename Mesh::CoordType;
+  //! Searched: a copy of the mesh's live part (a MeshLab layer, which may have deleted
+  //! faces, and which the filters leave as it was or replace), or the mesh itself (one
+  //! made to be searched, without deleted faces, kept alive meanwhile).
+  enum class Use { copy, in_place };
 
-  explicit VertexColours(Mesh& mesh) {
+  explicit VertexColours(Mesh& mesh, Use use = Use::copy) {
     bool seen = false;
     for (const auto& v : mesh.vert) {
       if (v.IsD()) continue;
       if (!seen) colour_ = v.cC(), seen = true;
       if (v.cC() != colour_) {
-        // The grid indexes deleted faces too: a copy of the live part. vcglib's
-        // point-to-triangle distance reads unit face normals, which the layer's may not be.
-        vcg::tri::Append<Mesh, Mesh>::MeshCopy(copy_, mesh);
-        detail::enable_marks(copy_, 0);
-        vcg::tri::UpdateNormal<Mesh>::PerFaceNormalized(copy_);
-        grid_.Set(copy_.face.begin(), copy_.face.end());
+        // The grid indexes deleted faces too, hence the copy of the live part. vcglib's
+        // point-to-triangle distance reads unit face normals, which a layer's may not be.
+        if (use == Use::copy) vcg::tri::Append<Mesh, Mesh>::MeshCopy(copy_, mesh);
+        source_ = use == Use::copy ? &copy_ : &mesh;
+        detail::enable_marks(*source_, 0);
+        vcg::tri::UpdateNormal<Mesh>::PerFaceNormalized(*source_);
+        grid_.Set(source_->face.begin(), source_->face.end());
         return;
       }
     }
   }
 
+  VertexColours(const VertexColours&) = delete;  // source_ may point into the object
+  VertexColours& operator=(const VertexColours&) = delete;
+
   //! The colour at the point of the mesh closest to p.
   vcg::Color4b at(const Coord& p) {
-    if (copy_.fn == 0) return colour_;
+    if (!source_) return colour_;
     using Scalar = typename Mesh::ScalarType;
     Scalar dist = 0;
     Coord foot(0, 0, 0);
-    const auto* f = vcg::tri::GetClosestFaceBase(copy_, grid_, p, std::numeric_limits<Scalar>::max(), dist, foot);
+    const auto* f = vcg::tri::GetClosestFaceBase(*source_, grid_, p, std::numeric_limits<Scalar>::max(), dist, foot);
     if (!f) return colour_;
     // The closest point lies on the triangle, up to rounding: its weights are clamped to
     // it. A triangle of no area has none: its nearest corner's colour.
@@ -85,6 +93,7 @@ class VertexColours {
 
  private:
   Mesh copy_;
+  Mesh* source_ = nullptr;  // what at() searches; none for a mesh of one colour
   vcg::GridStaticPtr<typename Mesh::FaceType, typename Mesh::ScalarType> grid_;
   vcg::Color4b colour_;
 };
