@@ -7,7 +7,7 @@
 #include <iostream>
 
 #include "quadsimp/fitmap/fitmap.h"
-#include "quadsimp/convert/prepare_input.h"
+#include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
 #include "quadsimp/mesh/clean.h"
 #include "quadsimp/metrics/metrics.h"
@@ -61,12 +61,6 @@ void print_summary(const SimplifyArgs& a, const QuadQuality& q, double seconds, 
               q.faces, q.regular_percent, q.max_valence, seconds, operations_done(r).c_str());
 }
 
-// The input as read, kept only where it has vertex colours, to colour the quads from
-// (preparing the input merges, splits and moves vertices).
-MeshFile colour_source(const MeshFile& file) {
-  return file.colours.empty() ? MeshFile{} : file;
-}
-
 }  // namespace
 
 std::string check_output_path(const std::string& input, const std::string& output) {
@@ -89,10 +83,8 @@ int run_convert(const ConvertArgs& a) {
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
-    MeshFile file = read_mesh(a.input);
-    const MeshFile coloured = colour_source(file);
-    Input in = prepare_input(std::move(file), a.input, {}, stderr_log(a.quiet));
-    write_quad_mesh(a.output, in.quads, colours_of_quads(coloured, in.quads));
+    Input in = load_input(a.input, {}, stderr_log(a.quiet));
+    write_quad_mesh(a.output, in.quads, colours_of_quads(in.colour_source, in.quads));
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (in.was_pure_quad) {
       std::printf("%s: already pure quad, %u quads written to %s (%.2f s)\n", a.input.c_str(),
@@ -124,12 +116,10 @@ int run_simplify(const SimplifyArgs& a) {
   try {
     const auto t0 = std::chrono::steady_clock::now();
     const LogFn log = stderr_log(a.quiet);
-    MeshFile file = read_mesh(a.input);
-    const MeshFile coloured = colour_source(file);
-    Input in = prepare_input(std::move(file), a.input, {}, log);
+    Input in = load_input(a.input, {}, log);
     const ReferenceSurface ref(std::move(in.reference));
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
-    write_quad_mesh(a.output, in.quads, colours_of_quads(coloured, in.quads));
+    write_quad_mesh(a.output, in.quads, colours_of_quads(in.colour_source, in.quads));
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads, &ref);
     if (log)

@@ -99,11 +99,18 @@ TEST_F(Cli, vertex_colours_reach_the_quads) {
   for (const auto& f : sphere.faces)
     ply += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
   const std::string in = write("coloured.ply", ply);
-  for (const char* command : {"simplify", "convert"}) {
-    const std::string out = p(std::string(command) + ".ply");
-    const CliRun r = run(std::string(command) + " " + in + " " + out + (command[0] == 's' ? " --faces 150 -q" : " -q"));
+  // The last run takes the converted quads (a pure quad input, kept apart from its quads).
+  struct Run {
+    std::string command, input, output, options;
+  };
+  const Run runs[] = {{"simplify", in, p("simplify.ply"), "--faces 150"},
+                      {"convert", in, p("convert.ply"), ""},
+                      {"simplify", p("convert.ply"), p("quads.ply"), "--faces 100"}};
+  for (const Run& c : runs) {
+    const std::string command = c.command + " " + c.input + " " + c.output + " " + c.options + " -q";
+    const CliRun r = run(command);
     ASSERT_EQ(r.code, 0) << r.out;
-    const MeshFile f = read_mesh(out);
+    const MeshFile f = read_mesh(c.output);
     ASSERT_EQ(f.colours.size(), f.positions.size()) << command;
     double worst = 0;
     for (std::size_t i = 0; i < f.positions.size(); ++i) {

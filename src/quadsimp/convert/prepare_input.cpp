@@ -52,9 +52,10 @@ Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions
   in.was_pure_quad = file.is_pure_quad() && !repaired;
   if (file.is_pure_quad() && repaired && log)
     log(name + ": the quads needed the repairs above; their triangles are paired into quads again");
+  const bool coloured = !file.colours.empty();  // the file is kept whole (colour_source)
   if (in.was_pure_quad) {
     try {
-      in.quads = QuadMesh::from_faces(std::move(file.positions), file.quads);
+      in.quads = QuadMesh::from_faces(coloured ? file.positions : std::move(file.positions), file.quads);
     } catch (const InvalidInput& e) {
       throw InvalidInput(name + ": " + e.what());
     }
@@ -62,6 +63,7 @@ Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions
   } else {
     in.quads = tri_to_quad(in.reference, options, &in.convert);
   }
+  if (coloured) in.colour_source = std::move(file);
   return in;
 }
 
