@@ -181,7 +181,7 @@ void write_obj(const std::string& path, const QuadMesh& q, const std::vector<Col
     }
     // Colours after the coordinates, as fractions: the extension MeshLab reads and writes.
     if (!colours.empty())
-      for (int k = 0; k < 3; ++k) out << ' ' << std::to_string(colours[v][std::size_t(k)] / 255.0).substr(0, 8);
+      for (int k = 0; k < 3; ++k) out << ' ' << std::to_string(colours[v][std::size_t(k)] / 255.0);
     out << '\n';
   }
   for (Index f = 0; f < q.face_capacity(); ++f) {

@@ -24,15 +24,13 @@ MeshFile read_off(const std::string& path) {
 
   // "[ST][C][N]OFF", then the counts on the same line or the next (some writers leave
   // out the space: "OFF490 518 0").
-  const std::string_view word = in[0];
+  // A copy: the fields are views of a line, which the next line replaces.
+  const std::string header(in[0]);
+  const std::string_view word = header;
   const std::size_t off = word.find("OFF");
   if (off == std::string_view::npos) in.fail(detail::quoted(word) + " is not an OFF header");
   for (const char c : word.substr(0, off))
     if (c == '4' || c == 'n') in.fail(detail::quoted(word) + ": only three-dimensional OFF is read");
-  // COFF: each vertex's colour after its position (and its normal, in CNOFF); kept only
-  // if every vertex has one. (Read from the header now: `word` goes with its line.)
-  bool coloured = word.substr(0, off).find('C') != std::string_view::npos;
-  const std::size_t colour_at = word.substr(0, off).find('N') != std::string_view::npos ? 6 : 3;
   std::vector<std::string_view> counts(in.fields().begin() + 1, in.fields().end());
   if (off + 3 < word.size()) counts.insert(counts.begin(), word.substr(off + 3));
   if (!counts.empty() && counts[0] == "BINARY") in.fail("binary OFF is not read (ASCII only)");
@@ -55,6 +53,11 @@ MeshFile read_off(const std::string& path) {
   triangles.reserve(std::size_t(std::min(nf, bytes / 8)));
   faux.reserve(triangles.capacity());
 
+  // COFF: each vertex's colour after its position (and its normal, in CNOFF); kept only
+  // if every vertex has one.
+  const std::string_view prefix = word.substr(0, off);
+  bool coloured = prefix.find('C') != std::string_view::npos;
+  const std::size_t colour_at = prefix.find('N') != std::string_view::npos ? 6 : 3;
   std::vector<Colour> colours;
   for (long long i = 0; i < nv; ++i) {
     if (!in.next()) in.ends("after " + std::to_string(i) + " of its " + std::to_string(nv) + " vertices");
@@ -62,7 +65,6 @@ MeshFile read_off(const std::string& path) {
     Colour c;
     if (coloured && (coloured = in.colour(colour_at, false, c))) colours.push_back(c);
   }
-  if (!coloured) colours.clear();
 
   std::vector<Index> corners;
   for (long long f = 0; f < nf; ++f) {
@@ -87,7 +89,7 @@ MeshFile read_off(const std::string& path) {
     if (n > 2) detail::fan(corners.data(), corners.size(), triangles, faux);  // two corners: an edge, not a face
   }
   MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux);
-  out.colours = std::move(colours);
+  if (coloured) out.colours = std::move(colours);
   return out;
 }
 

@@ -9,7 +9,6 @@
 // other properties and elements are skipped.
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -260,7 +259,7 @@ std::optional<MeshFile> read_ply(const std::string& path) {
           for (int c = 0; c < 4; ++c)
             if (coloured && int(k) == rgba[c]) {
               const bool fraction = prop.value == Type::f32 || prop.value == Type::f64;
-              colour[std::size_t(c)] = std::uint8_t(std::clamp(std::lround(fraction ? 255 * x : x), 0L, 255L));
+              colour[std::size_t(c)] = colour_byte(fraction ? 255 * x : x);
             }
           if (face && int(k) == flags) face_flags = std::uint32_t(std::int64_t(x));
           continue;

@@ -6,13 +6,13 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/util/errors.h"
 #include "quadsimp/util/parse_number.h"
 #include "quadsimp/util/types.h"
@@ -66,7 +66,7 @@ class TextLines {
   //! Fields from `from` on as a colour (red, green, blue, and alpha if a fourth field
   //! follows): fractions of 1 if `fractions`, else bytes, or fractions where a field
   //! has a decimal point or an exponent. False if three numbers are not there.
-  bool colour(std::size_t from, bool fractions, std::array<std::uint8_t, 4>& c) const {
+  bool colour(std::size_t from, bool fractions, Colour& c) const {
     if (fields_.size() < from + 3) return false;
     const std::size_t n = std::min<std::size_t>(4, fields_.size() - from);
     c[3] = 255;
@@ -74,8 +74,7 @@ class TextLines {
       const std::string_view f = fields_[from + k];
       double x;
       if (!parse_number(f, x)) return false;
-      if (fractions || f.find_first_of(".eE") != std::string_view::npos) x *= 255;
-      c[k] = std::uint8_t(std::clamp(std::lround(x), 0L, 255L));
+      c[k] = colour_byte(fractions || f.find_first_of(".eE") != std::string_view::npos ? 255 * x : x);
     }
     return true;
   }

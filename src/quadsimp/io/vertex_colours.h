@@ -13,6 +13,8 @@
 #include <vcg/complex/append.h>
 #include <vcg/space/index/grid_static_ptr.h>
 
+#include "quadsimp/mesh/mesh_file.h"
+
 namespace qs {
 
 namespace detail {
@@ -86,7 +88,7 @@ class VertexColours {
     vcg::Color4b c;
     for (int k = 0; k < 4; ++k) {
       const double x = w[0] * f->cV(0)->cC()[k] + w[1] * f->cV(1)->cC()[k] + w[2] * f->cV(2)->cC()[k];
-      c[k] = static_cast<unsigned char>(std::clamp(std::lround(x), 0L, 255L));
+      c[k] = colour_byte(x);
     }
     return c;
   }

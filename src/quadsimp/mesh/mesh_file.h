@@ -14,6 +14,11 @@ namespace qs {
 //! mesh has quads alone.
 using Colour = std::array<std::uint8_t, 4>;  //!< red, green, blue, alpha
 
+//! A colour channel of 0 to 255 (or beyond: clamped) as its nearest byte.
+inline std::uint8_t colour_byte(double x) {
+  return x >= 255 ? 255 : x > 0 ? std::uint8_t(x + 0.5) : 0;  // NaN: 0
+}
+
 struct MeshFile {
   std::vector<Vec3> positions;
   std::vector<std::array<Index, 3>> triangles;
