@@ -69,6 +69,38 @@ TriMesh without_faces(TriMesh t, Drop&& drop) {
   return t;
 }
 
+// A flat n x n grid whose left and right sides are ragged, like a range scan's outline:
+// each row loses 0 to `deepest` cells (drawn) at either end.
+TriMesh ragged_grid(int n, unsigned seed, int deepest = 1) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> depth(0, deepest);
+  std::vector<int> left(n), right(n);
+  for (int j = 0; j < n; ++j) left[j] = depth(rng), right[j] = n - depth(rng);
+  return without_faces(tri_grid(n, n), [&](const Vec3& c) {
+    const int i = int(c.x() * n), j = int(c.y() * n);
+    return i < left[j] || i >= right[j];
+  });
+}
+
+// The largest distance from a border vertex of q to M0's border.
+double border_gap(const QuadMesh& q, const ReferenceSurface& ref) {
+  const TriMesh& t = ref.mesh();
+  double gap = 0;
+  for (Index v = 0; v < q.vertex_capacity(); ++v) {
+    if (!q.is_vertex_live(v) || !q.is_border_vertex(v)) continue;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (Index f = 0; f < t.n_faces(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        if (ref.adjacency()[f][k] != kNone) continue;
+        const Vec3 &a = t.positions[t.faces[f][k]], &b = t.positions[t.faces[f][(k + 1) % 3]];
+        const double u = std::clamp((q.position(v) - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+        nearest = std::min(nearest, (a + u * (b - a) - q.position(v)).norm());
+      }
+    gap = std::max(gap, nearest);
+  }
+  return gap;
+}
+
 Index count_components(const QuadMesh& m) {
   std::vector<Index> component;
   return connected_components(m, component);
@@ -295,10 +327,48 @@ TEST(Simplify, flat_square_keeps_its_corners_and_coarsens_its_border) {
     SCOPED_TRACE(target);
     Case c = prepare(tri_grid(60, 60));
     const ReferenceSurface ref(c.tri);
-    run_and_check(c.quads, target, ref);
+    EXPECT_EQ(run_and_check(c.quads, target, ref).border_insets, 0u);  // its border edges lie over the input
     EXPECT_GT(quad_quality(c.quads).homeometry_min, 0.3);
     for (const Vec3& corner : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}) {
       EXPECT_LT(nearest_vertex_distance(c.quads, corner), 1e-9) << "lost the corner at " << corner.transpose();
+    }
+  }
+}
+
+TEST(Simplify, border_moves_inwards_where_a_ragged_outline_leaves_it_over_nothing) {
+  // The border edges of the quads cut across the notches of a ragged outline, and rays
+  // cast along the quads' normals there miss the input. Moving the border vertices
+  // inwards (by at most one input edge) must bring most of those points back over it,
+  // and leave every interior vertex where it was.
+  for (unsigned seed : {1u, 2u}) {
+    SCOPED_TRACE(seed);
+    double missed[2];
+    QuadMesh result[2];
+    for (bool inset : {false, true}) {
+      Case c = prepare(ragged_grid(60, seed));
+      const ReferenceSurface ref(c.tri);
+      SimplifyOptions opt;
+      opt.target_faces = 150;
+      opt.inset_border = inset;
+      opt.check_invariants = true;
+      const SimplifyReport r = simplify(c.quads, ref, opt);
+      EXPECT_EQ(r.border_insets > 0, inset);
+      EXPECT_EQ(border_loops_out_of_order(c.quads, ref), 0u);
+      const QuadQuality q = quad_quality(c.quads, &ref);
+      EXPECT_EQ(q.flipped_faces + q.nonconvex_faces + q.folded_faces, 0u);
+      missed[inset] = 1 - surface_distance(c.quads, ref, 200000).projectability;
+      if (inset) {
+        EXPECT_LE(border_gap(c.quads, ref), ref.mean_edge_length() * (1 + 1e-6));
+      }
+      result[inset] = std::move(c.quads);
+    }
+    EXPECT_GT(missed[0], 0.005);  // the outline is ragged enough to matter
+    EXPECT_LT(missed[1], 0.3 * missed[0]);
+    ASSERT_EQ(result[1].quads(), result[0].quads());
+    for (Index v = 0; v < result[0].n_vertices(); ++v) {
+      if (!result[0].is_border_vertex(v)) {
+        ASSERT_EQ(result[1].position(v), result[0].position(v)) << v;
+      }
     }
   }
 }
@@ -343,8 +413,9 @@ TEST(Simplify, every_change_keeps_the_mesh_valid_and_every_border_vertex_a_candi
       {"torus", tri_torus(12, 24), 30},
       {"cylinder of long triangles (folds, unfolding)", cad_cylinder(32, 1, 2.0), 30},
       {"patches meshed apart (cracks zipped)", patches_meshed_apart(3, 0.5), 40},
+      {"ragged outline (border inset)", ragged_grid(40, 3), 60},
   };
-  Index border_collapses = 0, chord_collapses = 0, unfolds = 0;
+  Index border_collapses = 0, chord_collapses = 0, unfolds = 0, border_insets = 0;
   for (const Run& run : runs) {
     SCOPED_TRACE(run.name);
     Case c = prepare(run.tri);
@@ -363,8 +434,10 @@ TEST(Simplify, every_change_keeps_the_mesh_valid_and_every_border_vertex_a_candi
     EXPECT_NO_THROW(r = simplify(c.quads, ref, opt));
     EXPECT_LT(r.faces, r.initial_faces * 2 / 3);
     border_collapses += r.border_collapses, chord_collapses += r.chord_collapses, unfolds += r.unfolds;
+    border_insets += r.border_insets;
   }
   EXPECT_GT(border_collapses, 20u);  // each kind of change was checked
+  EXPECT_GT(border_insets, 0u);
   EXPECT_GT(chord_collapses, 0u);
   EXPECT_GT(unfolds, 0u);
 }

@@ -9,6 +9,9 @@
 
 namespace qs {
 
+//! A square's diagonal over its side: homeometry and the springs compare diagonals to it.
+inline constexpr double kSqrt2 = 1.4142135623730951;
+
 //! Twice the vector area of the quad (cross product of its diagonals).
 inline Vec3 quad_normal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
   return (p2 - p0).cross(p3 - p1);

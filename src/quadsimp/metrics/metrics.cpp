@@ -16,8 +16,6 @@
 namespace qs {
 namespace {
 
-constexpr double kSqrt2 = 1.4142135623730951;
-
 // Counter-based random numbers: sample i is the same whatever thread draws it.
 double uniform01(std::uint64_t i, std::uint64_t stream) {
   std::uint64_t z = i * 0x9E3779B97F4A7C15ull + stream * 0xD1B54A32D192ED03ull + 0x632BE59BD9B4E019ull;

@@ -181,6 +181,10 @@ class Simplifier {
   bool is_border_corner(Index v) const;
   void coarsen_border();
   bool remove_border_vertex(Index b);
+  void inset_border();
+  int border_misses(Index v, const Vec3& p) const;
+  bool folds_further(Index v, const Vec3& p) const;
+  bool keeps_lengths(Index v, const Vec3& p) const;
   // The border ear f with b at corner k merges its neighbours a and c into one vertex of
   // val(a) + val(c) - 3 edges (border_ear.h).
   bool ear_exceeds_valence(Index f, Index k) const {

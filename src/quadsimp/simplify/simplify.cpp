@@ -604,6 +604,7 @@ SimplifyReport Simplifier::run() {
   for (std::size_t c = 0; c < share_.size(); ++c)
     if (double(piece_faces_[c]) > share_[c]) ++rep_.pieces_above_share, rep_.faces_above_share += piece_faces_[c];
   if (opt_.adaptive && !halted) rep_.blocked_share = blocked_share();
+  if (has_border_ && opt_.inset_border && !opt_.preserve_boundary && !rep_.cancelled) inset_border();
   if (opt_.adaptive) rep_.beyond_reach = count_beyond_reach();
   rep_.ran_out = measure && !halted && !rep_.cancelled;
   if (opt_.unfold && !opt_.refuse_folds && !rep_.cancelled) unfold();

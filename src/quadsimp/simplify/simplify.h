@@ -111,6 +111,9 @@ struct SimplifyOptions {
   //! Remove border vertices whose border edges are short next to the mean edge (border
   //! ear collapses, ours): without it holes keep all their input edges.
   bool coarsen_border = true;
+  //! At the end, move border vertices inwards on M0 where their border edges miss the
+  //! input along the faces' normals (a scan's jagged outline; ours, border.cpp).
+  bool inset_border = true;
   //! Rotation + smoothing passes after each collapse. The paper does one; a second
   //! one over the smoothed zone gives 3-6 points more regular vertices. It runs only
   //! outside the fine phase (below), so it costs about a fifth more time overall
@@ -169,6 +172,7 @@ struct SimplifyReport {
   Index faces = 0;
   Index collapses = 0;
   Index border_collapses = 0;  //!< border ear collapses (coarsen_border)
+  Index border_insets = 0;     //!< border vertices moved inwards (inset_border)
   Index chord_collapses = 0;   //!< poly-chord collapses (chord_collapses)
   Index rotations = 0;
   Index unfolds = 0;  //!< rotations and corner moves that unfolded a quad (or bent it less) at the end

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "quadsimp/mesh/quad_geometry.h"
+
 namespace qs::detail {
 
 namespace {
-
-constexpr double kSqrt2 = 1.4142135623730951;
 
 // Where a spring of length `rest` from q would put p, given the length l of d = p - q:
 // at q + rest d / l, in p's direction (p itself when they coincide). With anisotropy l is
