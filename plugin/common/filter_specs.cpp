@@ -102,7 +102,8 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "(0.05 in the paper). Larger values allow larger faces."},
       {kSimplify, "PreserveBoundary", "Preserve boundary", ParamKind::Bool, 0, 0, 1,
        "Keep the mesh border exactly: no collapse touches a border vertex and smoothing leaves them in place. "
-       "Off: border vertices stay on the border but may slide along it."},
+       "Off: border vertices slide along the border, and where a ragged outline leaves a border edge over "
+       "nothing, move inwards by at most one edge of the input."},
       {kSimplify, "Fast", "Fast (one pass)", ParamKind::Bool, 0, 0, 1,
        "One rotation and smoothing pass after each collapse, as in the paper: about 20% faster, with a few "
        "points fewer regular vertices. Off: a second pass over the smoothed zone once the mesh has less than "

@@ -84,7 +84,9 @@ int main(int argc, char** argv) {
                 "along its normal within this share of the bounding-box diagonal (0: no check)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
-  s->add_flag("--preserve-boundary", simp.params.preserve_boundary, "keep the border exactly as it is");
+  s->add_flag("--preserve-boundary", simp.params.preserve_boundary,
+              "keep the border exactly as it is (else border vertices slide along it, and move inwards by at most "
+              "one input edge where a ragged outline leaves a border edge over nothing)");
   s->add_flag("--fast", simp.params.fast,
               "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");
   s->add_flag("--fit-to-input", simp.params.fit_to_input,
