@@ -69,7 +69,7 @@ def row(model, how, a, u):
 
 
 def main():
-    args = parse_args(__doc__, MODELS, python=True, extra=[
+    args = parse_args(__doc__, MODELS, python=True, datasets=False, extra=[
         ("--counts", dict(nargs="*", type=int, default=[400, 1400], help="fixed face counts")),
         ("--npz", dict(help="jacksboro_fault_dem.npz (without it make_terrain.py fetches matplotlib's wheel)"))])
     print(f"Distances sampled with {args.samples} points per surface plus vertices.\n")

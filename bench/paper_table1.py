@@ -91,14 +91,16 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False, python=False, extra=()):
+def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False, python=False, extra=(), datasets=True):
     """The options the bench scripts take (--draws: Tables 2 and 3 only; --adaptive-args:
     the fixed counts only; --python, a Python with pymeshlab: the MeshLab comparison and
-    the open scans; extra: (flag, argparse keywords) of one script's own)."""
+    the open scans; extra: (flag, argparse keywords) of one script's own; datasets=False
+    for a script that makes its inputs instead of reading the shared datasets)."""
     here = os.path.dirname(os.path.abspath(__file__))
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quadsimp", default=os.path.join(here, "..", "build", "src", "quadsimp"))
-    ap.add_argument("--datasets", default=os.path.join(here, "..", "..", "shared", "datasets"))
+    if datasets:
+        ap.add_argument("--datasets", default=os.path.join(here, "..", "..", "shared", "datasets"))
     ap.add_argument("--samples", type=int, default=samples, help="distance samples per surface")
     ap.add_argument("--models", nargs="*", default=models)
     if draws:
