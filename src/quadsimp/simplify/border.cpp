@@ -179,6 +179,7 @@ void Simplifier::inset_border() {
   struct Start {
     Index v;
     Vec3 from, in;
+    bool moved;
   };
   std::vector<Start> border;
   for (Index v = 0; v < m_.vertex_capacity(); ++v) {
@@ -190,11 +191,11 @@ void Simplifier::inset_border() {
     across.normalize();
     Vec3 towards = Vec3::Zero();
     m_.for_each_outgoing(v, [&](Index h) { towards += m_.position(m_.to(h)) - p; });
-    border.push_back({v, p, across.dot(towards) < 0 ? -across : across});
+    border.push_back({v, p, across.dot(towards) < 0 ? -across : across, false});
   }
   for (int sweep = 0; sweep < kSweeps; ++sweep) {
-    Index moved = 0;
-    for (const Start& b : border) {
+    bool moved = false;
+    for (Start& b : border) {
       int fewest = border_misses(b.v, m_.position(b.v));
       SurfacePoint best;
       const double step = std::min(ref_.mean_edge_length(), mu_at(b.v)) / kSteps;
@@ -208,11 +209,11 @@ void Simplifier::inset_border() {
       if (!best.found()) continue;
       m_.position(b.v) = best.point;
       record_foot(b.v, best);
-      ++moved;
+      b.moved = moved = true;
     }
-    rep_.border_insets += moved;
-    if (moved == 0) break;
+    if (!moved) break;
   }
+  for (const Start& b : border) rep_.border_insets += b.moved;
 }
 
 // Whether moving v to p keeps its edges within half and twice their rest length and its
