@@ -340,8 +340,8 @@ TEST(Simplify, border_moves_inwards_where_a_ragged_outline_leaves_it_over_nothin
   // cast along the quads' normals there miss the input. Moving the border vertices
   // inwards (by at most one input edge) must bring most of those points back over it,
   // and leave every interior vertex where it was.
-  for (unsigned seed : {1u, 2u}) {
-    SCOPED_TRACE(seed);
+  for (auto [seed, adaptive] : {std::pair{1u, false}, std::pair{2u, false}, std::pair{1u, true}}) {
+    SCOPED_TRACE(std::to_string(seed) + (adaptive ? " adaptive" : " uniform"));
     double missed[2];
     QuadMesh result[2];
     for (bool inset : {false, true}) {
@@ -351,6 +351,12 @@ TEST(Simplify, border_moves_inwards_where_a_ragged_outline_leaves_it_over_nothin
       opt.target_faces = 150;
       opt.inset_border = inset;
       opt.check_invariants = true;
+      Fitmaps fitmaps;
+      if (adaptive) {
+        fitmaps = compute_fitmaps(c.tri);
+        opt.adaptive = opt.refuse_folds = true;
+        opt.fitmaps = &fitmaps;
+      }
       const SimplifyReport r = simplify(c.quads, ref, opt);
       EXPECT_EQ(r.border_insets > 0, inset);
       EXPECT_EQ(border_loops_out_of_order(c.quads, ref), 0u);
