@@ -200,7 +200,7 @@ void Simplifier::inset_border() {
       SurfacePoint best;
       const double step = std::min(ref_.mean_edge_length(), mu_at(b.v)) / kSteps;
       for (int k = 1; k <= kSteps && fewest > 0; ++k) {
-        const SurfacePoint foot = ref_.closest_within(b.from + k * step * b.in, 0.0);
+        const SurfacePoint foot = ref_.closest_within(b.from + k * step * b.in, k * step);
         if (!foot.found() || !moved_faces_ok(b.v, foot.point) || folds_further(b.v, foot.point) ||
             !keeps_lengths(b.v, foot.point))
           continue;
