@@ -138,6 +138,17 @@ void write_atomically(const std::string& path, WriteFn&& write) {
   }
 }
 
+// t as vcglib's triangle mesh (same ids), for its writer and its closest-point search.
+void fill_tri_mesh(const TriMesh& t, TMesh& m) {
+  auto vi = vcg::tri::Allocator<TMesh>::AddVertices(m, t.positions.size());
+  for (const Vec3& p : t.positions) (vi++)->P() = vcg::Point3d(p.x(), p.y(), p.z());
+  auto fi = vcg::tri::Allocator<TMesh>::AddFaces(m, t.faces.size());
+  for (const auto& f : t.faces) {
+    for (int k = 0; k < 3; ++k) fi->V(k) = &m.vert[f[std::size_t(k)]];
+    ++fi;
+  }
+}
+
 // The live vertices and faces of q (tombstones skipped, ids renumbered in order), with
 // the vertices' colours if there are any (indexed as q's vertices).
 void fill_poly_mesh(const QuadMesh& q, const std::vector<Colour>& colours, PMesh& pm) {
@@ -246,19 +257,11 @@ void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const std::v
 
 std::vector<Colour> colours_of_quads(const MeshFile& from, const QuadMesh& quads) {
   if (from.colours.empty()) return {};
-  const TriMesh t = triangles_of(from);
   TMesh m;
-  auto vi = vcg::tri::Allocator<TMesh>::AddVertices(m, t.positions.size());
-  for (std::size_t i = 0; i < t.positions.size(); ++i, ++vi) {
-    const Vec3& p = t.positions[i];
+  fill_tri_mesh(triangles_of(from), m);  // triangles_of() keeps the positions' order
+  for (std::size_t i = 0; i < from.colours.size(); ++i) {
     const Colour& c = from.colours[i];
-    vi->P() = vcg::Point3d(p.x(), p.y(), p.z());
-    vi->C() = vcg::Color4b(c[0], c[1], c[2], c[3]);
-  }
-  auto fi = vcg::tri::Allocator<TMesh>::AddFaces(m, t.faces.size());
-  for (const auto& f : t.faces) {
-    for (int k = 0; k < 3; ++k) fi->V(k) = &m.vert[f[std::size_t(k)]];
-    ++fi;
+    m.vert[i].C() = vcg::Color4b(c[0], c[1], c[2], c[3]);
   }
   VertexColours<TMesh> source(m, VertexColours<TMesh>::Use::in_place);
   std::vector<Colour> out(quads.vertex_capacity(), Colour{0, 0, 0, 255});
@@ -278,13 +281,7 @@ void write_tri_mesh_ply(const std::string& path, const TriMesh& mesh,
     if (f.values.size() != mesh.positions.size())
       throw std::invalid_argument("write_tri_mesh_ply: field '" + f.name + "' has the wrong size");
   TMesh tm;
-  auto vi = vcg::tri::Allocator<TMesh>::AddVertices(tm, mesh.positions.size());
-  for (const Vec3& p : mesh.positions) (vi++)->P() = vcg::Point3d(p.x(), p.y(), p.z());
-  auto fi = vcg::tri::Allocator<TMesh>::AddFaces(tm, mesh.faces.size());
-  for (const auto& t : mesh.faces) {
-    for (int k = 0; k < 3; ++k) fi->V(k) = &tm.vert[t[k]];
-    ++fi;
-  }
+  fill_tri_mesh(mesh, tm);
   // Colour ramp of the first field (5th to 95th percentile), so that MeshLab shows
   // it without any setup.
   if (!fields.empty()) {

@@ -9,9 +9,6 @@
 
 namespace qs {
 
-//! A mesh as a file or a host application holds it, before any cleaning: its quads and
-//! its other faces as triangles (a polygon of five or more corners fanned); a pure quad
-//! mesh has quads alone.
 using Colour = std::array<std::uint8_t, 4>;  //!< red, green, blue, alpha
 
 //! A colour channel of 0 to 255 (or beyond: clamped) as its nearest byte.
@@ -19,6 +16,9 @@ inline std::uint8_t colour_byte(double x) {
   return x >= 255 ? 255 : x > 0 ? std::uint8_t(x + 0.5) : 0;  // NaN: 0
 }
 
+//! A mesh as a file or a host application holds it, before any cleaning: its quads and
+//! its other faces as triangles (a polygon of five or more corners fanned); a pure quad
+//! mesh has quads alone.
 struct MeshFile {
   std::vector<Vec3> positions;
   std::vector<std::array<Index, 3>> triangles;
