@@ -379,6 +379,26 @@ TEST(Simplify, border_moves_inwards_where_a_ragged_outline_leaves_it_over_nothin
   }
 }
 
+TEST(Simplify, border_inset_folds_no_quad_at_a_scans_holes) {
+  // Uniform mode lets smoothing fold quads and unfolds them at the end; the inset comes
+  // before that and must not fold one itself, or quads stay folded at small holes.
+  const std::string p = shared_dataset("bunny");
+  if (p.empty()) GTEST_SKIP() << "../shared/datasets not found";
+  TriMesh holed = with_holes(triangles_of(read_mesh(p)), 0.01, 1);
+  Index folded[2] = {0, 0};
+  for (bool inset : {false, true}) {
+    Case c = prepare(holed);
+    const ReferenceSurface ref(c.tri);
+    SimplifyOptions opt;
+    opt.target_faces = 2000;
+    opt.inset_border = inset;
+    const SimplifyReport r = simplify(c.quads, ref, opt);
+    EXPECT_EQ(r.border_insets > 0, inset);
+    folded[inset] = quad_quality(c.quads).folded_faces;
+  }
+  EXPECT_LE(folded[1], folded[0]);
+}
+
 TEST(Simplify, l_shape_keeps_its_six_corners) {
   // Five convex corners and a concave one. Border ear removals merge three border
   // vertices into one: at the middle one, they cut a corner next to it (by up to a

@@ -174,6 +174,9 @@ bool Simplifier::remove_border_vertex(Index b) {
 void Simplifier::inset_border() {
   constexpr int kSweeps = 3, kSteps = 4;
   update_mu();  // keeps_lengths() compares with it: the loop's may be 256 collapses old
+  // No inset folds a quad further, in uniform mode too (as unfold() does): it is a
+  // small move that never needs one, and the first version, unchecked, left one.
+  refuse_folds_ = true;
   // Each vertex's place on M0's border and its way inwards stay those before the first
   // sweep, so that no sweep takes a vertex further than kSteps steps.
   struct Start {
@@ -201,9 +204,7 @@ void Simplifier::inset_border() {
       const double step = std::min(ref_.mean_edge_length(), mu_at(b.v)) / kSteps;
       for (int k = 1; k <= kSteps && fewest > 0; ++k) {
         const SurfacePoint foot = ref_.closest_within(b.from + k * step * b.in, k * step);
-        if (!foot.found() || !moved_faces_ok(b.v, foot.point) || folds_further(b.v, foot.point) ||
-            !keeps_lengths(b.v, foot.point))
-          continue;
+        if (!foot.found() || !moved_faces_ok(b.v, foot.point) || !keeps_lengths(b.v, foot.point)) continue;
         if (const int misses = border_misses(b.v, foot.point); misses < fewest) fewest = misses, best = foot;
       }
       if (!best.found()) continue;
@@ -214,6 +215,7 @@ void Simplifier::inset_border() {
     if (!moved) break;
   }
   for (const Start& b : border) rep_.border_insets += b.moved;
+  refuse_folds_ = opt_.refuse_folds;
 }
 
 // Whether moving v to p keeps its edges within half and twice their rest length and its
@@ -232,24 +234,6 @@ bool Simplifier::keeps_lengths(Index v, const Vec3& p) const {
     }
   });
   return ok;
-}
-
-// Whether moving v to p bends one of its faces further past 90 degrees. Smoothing checks
-// it in adaptive mode only (refuse_folds), and uniform mode unfolds at the end; a border
-// inset is small and never needs a fold.
-bool Simplifier::folds_further(Index v, const Vec3& p) const {
-  bool folds = false;
-  m_.for_each_outgoing(v, [&](Index h) {
-    const Index f = QuadMesh::face(h);
-    const auto c = m_.face_vertices(f);
-    const auto before = m_.positions_of(c);
-    auto q = before;
-    for (Index i = 0; i < 4; ++i)
-      if (c[i] == v) q[i] = p;
-    folds = folds || quad_folds_further(q[0], q[1], q[2], q[3],
-                                        [&] { return quad_fold_cos(before[0], before[1], before[2], before[3]); });
-  });
-  return folds;
 }
 
 // How many points along border vertex v's two border edges, with v at p, miss M0 along

@@ -183,7 +183,6 @@ class Simplifier {
   bool remove_border_vertex(Index b);
   void inset_border();
   int border_misses(Index v, const Vec3& p) const;
-  bool folds_further(Index v, const Vec3& p) const;
   bool keeps_lengths(Index v, const Vec3& p) const;
   // The border ear f with b at corner k merges its neighbours a and c into one vertex of
   // val(a) + val(c) - 3 edges (border_ear.h).
@@ -263,7 +262,7 @@ class Simplifier {
   std::vector<std::size_t> edge_count_;  // per component, for update_mu()
   bool has_border_ = false;  // no operator makes a border where there was none
   double area_ = 0;  // of the mesh at the start
-  bool refuse_folds_;  // opt_.refuse_folds, and on during unfold(): what every fold check reads
+  bool refuse_folds_;  // opt_.refuse_folds, and on during unfold() and inset_border(): what every fold check reads
 };
 
 }  // namespace qs::detail
