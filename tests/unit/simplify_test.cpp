@@ -987,6 +987,40 @@ TEST(ReferenceSurface, closest_facing_a_way_does_not_depend_on_the_unit_of_lengt
   }
 }
 
+// Another sheet facing a triangle: across a thin box (top to bottom, and wall to wall),
+// between two grids facing each other, and none over an open grid alone or under a
+// second grid facing the same way (its back is seen, not a sheet facing this one).
+TEST(ReferenceSurface, sheet_gap_measures_the_distance_to_a_sheet_facing_back) {
+  TriMesh box = tri_cube(4);
+  for (Vec3& p : box.positions) p.z() /= 8;  // 1 by 1 by 0.125
+  clean(box);
+  const ReferenceSurface thin(box);
+  for (Index f = 0; f < box.n_faces(); ++f) {
+    const double expect = std::abs(thin.face_normal(f).z()) > 0.99 ? 0.125 : 1.0;
+    EXPECT_NEAR(thin.sheet_gap(f), expect, 1e-6) << "triangle " << f;
+  }
+
+  const TriMesh grid = tri_grid(8, 8);
+  const ReferenceSurface alone(grid);
+  for (Index f = 0; f < grid.n_faces(); ++f) EXPECT_TRUE(std::isinf(alone.sheet_gap(f)));
+
+  for (const bool facing : {true, false}) {
+    SCOPED_TRACE(facing);
+    TriMesh pair = grid, upper = grid;
+    for (Vec3& p : upper.positions) p.z() += 0.002;
+    if (facing)
+      for (auto& t : upper.faces) std::swap(t[1], t[2]);
+    append(pair, upper);
+    const ReferenceSurface two(pair);
+    for (Index f = 0; f < pair.n_faces(); ++f) {
+      if (facing)
+        EXPECT_NEAR(two.sheet_gap(f), 0.002, 1e-6) << "triangle " << f;
+      else
+        EXPECT_TRUE(std::isinf(two.sheet_gap(f))) << "triangle " << f;
+    }
+  }
+}
+
 // A vertex pushed past its neighbour turns two triangles over onto the grid: a flap,
 // with the triangles around its corners. A flattened sphere (two sides alike, meeting
 // at a sharp rim) has no flap, nor has the grid before the push.
