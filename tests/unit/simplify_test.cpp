@@ -399,29 +399,32 @@ TEST(Simplify, border_inset_folds_no_quad_at_a_scans_holes) {
   EXPECT_LE(folded[1], folded[0]);
 }
 
-// Thin leaves on a stalk (radius 0.1 and 0.3, knife-edged, at most 0.02 thick): a quad
-// whose corners all agree with the surface under them can still have its middle over the
-// leaf's other side. The middle is checked wherever another sheet faces a
-// corner's foot closer than the quad is wide (ReferenceSurface::sheet_gap): without
-// that, these runs ended with 3, 3, 1 and 2 quads facing the leaf's far side. (The
-// smaller leaf in adaptive mode still ends with 3: its top counts as a folded-over flap,
-// over which faces may keep facing away; bench/RESULTS.md, "Quads over another sheet".)
-TEST(Simplify, no_quad_faces_a_thin_leafs_far_side) {
-  SimplifyParams uniform300, uniform1000, adaptive;
-  uniform300.target_faces = 300;
-  uniform1000.target_faces = 1000;
-  adaptive.adaptive = adaptive.auto_halt = true;
-  const std::pair<double, SimplifyParams> runs[] = {
-      {0.1, uniform300}, {0.1, uniform1000}, {0.3, uniform300}, {0.3, adaptive}};
-  for (const auto& [radius, params] : runs) {
-    SCOPED_TRACE(radius);
-    SCOPED_TRACE(params.target_faces);
-    const TriMesh leaf = leaf_on_stalk(radius, 30, 1);
-    const Input in = simplified(MeshFile{leaf.positions, leaf.faces, {}}, params);
+// A thin plate: a bumpy sheet and a copy 0.001 above it facing the other way (about 0.05
+// of an input edge thick), as two pieces. Each sheet must simplify as it would alone: 200
+// quads for the plate come within a quarter of the RMS distance of 100 for one sheet
+// (measured 1.09 against 1.32e-3 of the diagonal). The middles of quads this coarse lie
+// nearer the other sheet wherever the bump curves them, so a check refusing every quad
+// whose middle's closest point of M0 faces away there (tried for pymeshlab's cow.obj,
+// whose tail lies along its rear) took this plate to 7.55e-3 (bench/RESULTS.md, "Quads
+// over another sheet").
+TEST(Simplify, a_thin_plate_simplifies_like_one_of_its_sheets) {
+  const TriMesh sheet = tri_grid(60, 60, 0.2);
+  TriMesh plate = sheet, upper = sheet;
+  for (auto& t : plate.faces) std::swap(t[1], t[2]);  // the lower sheet faces down
+  for (Vec3& p : upper.positions) p.z() += 0.001;
+  append(plate, upper);
+  double rms[2];
+  for (int k = 0; k < 2; ++k) {
+    const TriMesh& t = k ? plate : sheet;
+    SimplifyParams params;
+    params.target_faces = k ? 200 : 100;
+    const Input in = simplified(MeshFile{t.positions, t.faces, {}}, params);
     const ReferenceSurface ref(in.reference);
     validate(in.quads);
-    EXPECT_EQ(quad_quality(in.quads, &ref).flipped_faces, 0u);
+    EXPECT_LE(in.quads.n_faces(), params.target_faces);
+    rms[k] = surface_distance(in.quads, ref, 100000).rms / ref.bbox_diagonal();
   }
+  EXPECT_LT(rms[1], 1.25 * rms[0]);
 }
 
 TEST(Simplify, l_shape_keeps_its_six_corners) {
@@ -1009,40 +1012,6 @@ TEST(ReferenceSurface, closest_facing_a_way_does_not_depend_on_the_unit_of_lengt
     ASSERT_TRUE(any.found() && facing_up.found());
     EXPECT_LT(ref.face_normal(any.face).z(), -0.99);
     EXPECT_GT(ref.face_normal(facing_up.face).z(), 0.99);
-  }
-}
-
-// Another sheet facing a triangle: across a thin box (top to bottom, and wall to wall),
-// between two grids facing each other, and none over an open grid alone or under a
-// second grid facing the same way (its back is seen, not a sheet facing this one).
-TEST(ReferenceSurface, sheet_gap_measures_the_distance_to_a_sheet_facing_back) {
-  TriMesh box = tri_cube(4);
-  for (Vec3& p : box.positions) p.z() /= 8;  // 1 by 1 by 0.125
-  clean(box);
-  const ReferenceSurface thin(box);
-  for (Index f = 0; f < box.n_faces(); ++f) {
-    const double expect = std::abs(thin.face_normal(f).z()) > 0.99 ? 0.125 : 1.0;
-    EXPECT_NEAR(thin.sheet_gap(f), expect, 1e-6) << "triangle " << f;
-  }
-
-  const TriMesh grid = tri_grid(8, 8);
-  const ReferenceSurface alone(grid);
-  for (Index f = 0; f < grid.n_faces(); ++f) EXPECT_TRUE(std::isinf(alone.sheet_gap(f)));
-
-  for (const bool facing : {true, false}) {
-    SCOPED_TRACE(facing);
-    TriMesh pair = grid, upper = grid;
-    for (Vec3& p : upper.positions) p.z() += 0.002;
-    if (facing)
-      for (auto& t : upper.faces) std::swap(t[1], t[2]);
-    append(pair, upper);
-    const ReferenceSurface two(pair);
-    for (Index f = 0; f < pair.n_faces(); ++f) {
-      if (facing)
-        EXPECT_NEAR(two.sheet_gap(f), 0.002, 1e-6) << "triangle " << f;
-      else
-        EXPECT_TRUE(std::isinf(two.sheet_gap(f))) << "triangle " << f;
-    }
   }
 }
 

@@ -9,8 +9,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <tbb/parallel_for.h>
-
 namespace qs {
 
 struct ReferenceSurface::Bvh {
@@ -173,50 +171,9 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   rtcReleaseGeometry(geom);
   rtcCommitScene(bvh_->scene);
   if (!bvh_->error.empty()) throw std::runtime_error(bvh_->error);
-  measure_sheet_gaps();
 }
 
 ReferenceSurface::~ReferenceSurface() = default;
-
-ReferenceSurface::Hit ReferenceSurface::first_hit(const Vec3& p, const Vec3& d, float tnear, float tfar) const {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  RTCRayHit rh;
-  const Eigen::Vector3f org = to_embree(p);
-  rh.ray.org_x = org.x(), rh.ray.org_y = org.y(), rh.ray.org_z = org.z();
-  rh.ray.dir_x = float(d.x()), rh.ray.dir_y = float(d.y()), rh.ray.dir_z = float(d.z());
-  rh.ray.tnear = tnear;
-  rh.ray.tfar = tfar;
-  rh.ray.mask = ~0u;
-  rh.ray.flags = 0;
-  rh.ray.time = 0.f;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(bvh_->scene, &ctx, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
-  return {Index(rh.hit.primID), rh.ray.tfar, rh.hit.u, rh.hit.v};
-}
-
-// Two rays per triangle, from its centroid along its normal and against it. A hit on a
-// triangle facing back (normals more than 90 degrees apart) is another sheet; one
-// facing the same way (seen from behind, or a wall further out) is not.
-void ReferenceSurface::measure_sheet_gaps() {
-  const auto& P = mesh_.positions;
-  sheet_gap_.assign(mesh_.n_faces(), std::numeric_limits<float>::infinity());
-  tbb::parallel_for(Index(0), Index(mesh_.n_faces()), [&](Index f) {
-    const Vec3& n = normals_[f];
-    if (!(n.squaredNorm() > 0.5)) return;  // no area, no direction
-    const auto& t = mesh_.faces[f];
-    const Vec3 c = (P[t[0]] + P[t[1]] + P[t[2]]) / 3.0;
-    for (double sign : {1.0, -1.0}) {
-      // Past the triangle itself: the centroid lies on it, up to Embree's float rounding.
-      const Hit hit = first_hit(c, sign * n, 1e-6f, std::numeric_limits<float>::infinity());
-      if (hit.face != kNone && hit.face != f && normals_[hit.face].dot(n) < 0)
-        sheet_gap_[f] = std::min(sheet_gap_[f], float(hit.t / unit_));
-    }
-  });
-}
 
 SurfacePoint ReferenceSurface::ray_project(const Vec3& p, const Vec3& dir, double max_dist) const {
   SurfacePoint best;
@@ -227,16 +184,34 @@ SurfacePoint ReferenceSurface::ray_project(const Vec3& p, const Vec3& dir, doubl
   for (double sign : {1.0, -1.0}) {
     float tnear = 0.f;
     for (int tries = 0; tries < 8; ++tries) {
-      const Hit hit = first_hit(p, sign * d, tnear, float(std::min(max_dist, best.distance) * unit_));
-      if (hit.face == kNone) break;
-      if (normals_[hit.face].dot(d) > 0) {
-        const auto& t = mesh_.faces[hit.face];
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      RTCRayHit rh;
+      const Eigen::Vector3f org = to_embree(p);
+      rh.ray.org_x = org.x(), rh.ray.org_y = org.y(), rh.ray.org_z = org.z();
+      rh.ray.dir_x = float(sign * d.x());
+      rh.ray.dir_y = float(sign * d.y());
+      rh.ray.dir_z = float(sign * d.z());
+      rh.ray.tnear = tnear;
+      rh.ray.tfar = float(std::min(max_dist, best.distance) * unit_);
+      rh.ray.mask = ~0u;
+      rh.ray.flags = 0;
+      rh.ray.time = 0.f;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(bvh_->scene, &ctx, &rh);
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+      const Index f = rh.hit.primID;
+      if (normals_[f].dot(d) > 0) {
+        const auto& t = mesh_.faces[f];
         const auto& P = mesh_.positions;
-        const Vec3 q = (1 - hit.u - hit.v) * P[t[0]] + hit.u * P[t[1]] + hit.v * P[t[2]];
-        best = SurfacePoint{hit.face, hit.u, hit.v, q, double(hit.t) / unit_};
+        const double u = rh.hit.u, v = rh.hit.v;
+        const Vec3 q = (1 - u - v) * P[t[0]] + u * P[t[1]] + v * P[t[2]];
+        best = SurfacePoint{f, u, v, q, double(rh.ray.tfar) / unit_};
         break;
       }
-      tnear = std::nextafter(hit.t, std::numeric_limits<float>::infinity());
+      tnear = std::nextafter(rh.ray.tfar, std::numeric_limits<float>::infinity());
     }
   }
   return best;

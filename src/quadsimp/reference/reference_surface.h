@@ -42,10 +42,6 @@ class ReferenceSurface {
   //! surface (a scan defect: bounded all round by edges turning back by over 120
   //! degrees), where the surface's orientation says little.
   bool is_flap(Index f) const { return flap_[f] != 0; }
-  //! Distance from triangle f's centroid, along its normal either way, to the nearest
-  //! triangle facing back at it: the far side of a thin part, a part lying against this
-  //! one, the other wall of a narrow groove. Infinity where neither ray meets one.
-  double sheet_gap(Index f) const { return sheet_gap_[f]; }
 
   //! Nearest point hit by the line p + t*dir, |t| <= max_dist, whose triangle normal
   //! agrees with dir (dot > 0). Falls back to the closest point within max_dist with
@@ -105,7 +101,6 @@ class ReferenceSurface {
   std::vector<Vec3> normals_, vertex_normals_;
   std::vector<std::array<Index, 3>> adjacency_;  // for project_near()
   std::vector<char> flap_;
-  std::vector<float> sheet_gap_;
   // Per vertex, the border edge leaving it and the one arriving at it (3 * triangle +
   // corner, the edge running from that corner to the next), or kNone.
   std::vector<Index> border_out_, border_in_;
@@ -116,15 +111,6 @@ class ReferenceSurface {
   Eigen::Vector3f to_embree(const Vec3& p) const { return ((p - origin_) * unit_).cast<float>(); }
   struct Bvh;
   std::unique_ptr<Bvh> bvh_;
-  // Embree's first hit along p + t*d, d of unit length, tnear <= t <= tfar (t in
-  // Embree's units, as u and v are its barycentric weights); face kNone if none.
-  struct Hit {
-    Index face = kNone;
-    float t = 0;
-    double u = 0, v = 0;
-  };
-  Hit first_hit(const Vec3& p, const Vec3& d, float tnear, float tfar) const;
-  void measure_sheet_gaps();
 };
 
 //! Closest point to p on triangle (a, b, c); returns it and writes the weights of b and c.

@@ -12,8 +12,7 @@ namespace qs::detail {
 
 // A quad with normal n (diagonal cross product), corners `corners` at positions q, faces
 // like the surface under it: like its corners' foot normals (plus the merged vertex's
-// for a collapse) within acos(0.2), and, where M0 may face the other way under its
-// middle, like M0 at the point closest to its centre.
+// for a collapse) within acos(0.2).
 bool Simplifier::follows_reference(const Vec3& n, const std::array<Index, 4>& corners, const Vec3* q,
                                    const Vec3& extra_normal) const {
   Vec3 r = extra_normal;
@@ -24,38 +23,18 @@ bool Simplifier::follows_reference(const Vec3& n, const std::array<Index, 4>& co
   }
   const double cos_r = n.dot(r);
   if (cos_r < 0 || cos_r * cos_r < 0.04 * n.squaredNorm() * r.squaredNorm()) return false;
-  // The corners can agree while the middle lies over another sheet of M0. Two signs:
-  // - a corner where the quad stands steep on M0 (or faces away): it may span a sharp
-  //   fold (a wing's edge). Steep is 45 degrees: at 78 (acos 0.2) and at 60, quads still
-  //   ended flipped over folds whose corners all stood at 46-75 degrees (pensatore at 1K,
-  //   gargoyle at 2K with --fast);
-  // - a corner over M0 with another sheet facing it closer than the quad is wide: a thin
-  //   part, or one lying against the body. pymeshlab's cow.obj kept 4 quads facing its
-  //   rear at automatic halting, their corners on its tail (0.002 off the rear) within
-  //   75 degrees of their feet's normals.
-  // Both are rare, so the closest-point query is affordable; asked for every quad, it
-  // doubled the time of bunny.ply's adaptive run. The checks only refuse: the Table 1
-  // outputs did not change with the first, nor any dataset's output with the second
-  // (bench/RESULTS.md, "Quads over another sheet").
-  if (lowest < 0 || lowest * lowest < 0.5 * n.squaredNorm() || near_other_sheet(corners, q)) {
+  // A corner where the quad stands steep on M0 (or faces away) may mean it spans a
+  // sharp fold (a wing's edge): the sum of the corner normals can still agree while the
+  // surface under the quad's middle faces the other way. Rare, so the closest-point
+  // query is affordable here. Steep is 45 degrees: at 78 (acos 0.2) and at 60, quads
+  // still ended flipped over folds whose corners all stood at 46-75 degrees (pensatore
+  // at 1K, gargoyle at 2K with --fast). The check only refuses: the Table 1 outputs
+  // did not change.
+  if (lowest < 0 || lowest * lowest < 0.5 * n.squaredNorm()) {
     const SurfacePoint mid = ref_.closest_to_quad_centre(q);
     if (mid.found() && ref_.normal_at(mid).dot(n) < 0) return false;
   }
   return true;
-}
-
-// Whether a corner's foot has another sheet of M0 facing it (ReferenceSurface::sheet_gap)
-// within the quad's longer diagonal: only then can the quad's middle lie nearer that sheet
-// than its own.
-bool Simplifier::near_other_sheet(const std::array<Index, 4>& corners, const Vec3* q) const {
-  const double span2 = std::max((q[0] - q[2]).squaredNorm(), (q[1] - q[3]).squaredNorm());
-  for (Index v : corners) {
-    const Index f = foot_face_[v];
-    if (f == kNone) continue;
-    const double gap = ref_.sheet_gap(f);
-    if (gap * gap < span2) return true;
-  }
-  return false;
 }
 
 // A face with new corner positions q stays oriented like the reference surface under

@@ -151,7 +151,6 @@ class Simplifier {
   bool shape_ok(Index f, const Vec3* q, const Vec3& extra_normal) const;
   bool follows_reference(const Vec3& n, const std::array<Index, 4>& corners, const Vec3* q,
                          const Vec3& extra_normal) const;
-  bool near_other_sheet(const std::array<Index, 4>& corners, const Vec3* q) const;
   // Whether two corners or more have their feet on or next to a folded-over patch of M0.
   // With one (the faces around a fold) the other three still say where M0 faces. "Any
   // corner" changed the armadillo's runs (17 single-triangle flaps): at 1,806 quads its
