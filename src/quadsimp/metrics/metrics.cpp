@@ -163,7 +163,7 @@ SurfaceDistance surface_distance(const QuadMesh& m, const ReferenceSurface& ref,
   // Projectability: from a sample on the output, along the output's normal, the
   // nearest hit on the reference must face the same way.
   std::vector<char> ok(samples, 0);
-  const double reach = 0.05 * diag;
+  const double reach = kProjectabilityReach * diag;
   tbb::parallel_for(Index(0), samples, [&](Index i) {
     const SurfacePoint s = out_surface.closest(on_out[i]);
     if (!s.found()) return;

@@ -31,6 +31,10 @@ struct QuadQuality {
 
 QuadQuality quad_quality(const QuadMesh& mesh, const ReferenceSurface* ref = nullptr);
 
+//! How far along the output's normal the projectability measure looks for the reference
+//! (SurfaceDistance::projectability), as a share of the reference's bounding-box diagonal.
+inline constexpr double kProjectabilityReach = 0.05;
+
 //! Distances between the quad mesh (quads split along their shorter diagonal) and the
 //! reference surface, relative to the reference's bounding-box diagonal.
 struct SurfaceDistance {

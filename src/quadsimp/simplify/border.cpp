@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "quadsimp/mesh/quad_geometry.h"
+#include "quadsimp/metrics/metrics.h"
 #include "quadsimp/ops/border_ear.h"
 #include "quadsimp/ops/diagonal_collapse.h"
 #include "quadsimp/ops/local_rewrite.h"
@@ -237,14 +238,14 @@ bool Simplifier::keeps_lengths(Index v, const Vec3& p) const {
 }
 
 // How many points along border vertex v's two border edges, with v at p, miss M0 along
-// their face's normal within the projectability measure's reach (metrics.h). The points
+// their face's normal within the projectability measure's reach (kProjectabilityReach). The points
 // sit a tenth of an input edge inwards: from the edge itself, rays missed along smooth
 // outlines too, where the edge rises off a curved rim (the bowl of the CLI's crack test,
 // whose border then left the outline), and along straight ones by rounding.
 int Simplifier::border_misses(Index v, const Vec3& p) const {
   constexpr int kPoints = 8;
   const double inwards = 0.1 * ref_.mean_edge_length();
-  const double reach = 0.05 * ref_.bbox_diagonal();
+  const double reach = kProjectabilityReach * ref_.bbox_diagonal();
   int misses = 0;
   for (const Index h : {m_.border_in(v), m_.out(v)}) {
     const Index f = QuadMesh::face(h);
