@@ -134,7 +134,7 @@ int run_simplify(const SimplifyArgs& a) {
         std::snprintf(seconds, sizeof seconds, "%.4f", s);
         const std::string extra = std::string(", \"seconds\": ") + seconds + ", \"collapses\": " + n(r.collapses) +
                                   ", \"border_collapses\": " + n(r.border_collapses) +
-                                  ", \"border_insets\": " + n(r.border_insets) +
+                                  ", \"border_insets\": " + n(r.border_insets) + ", \"tips\": " + n(r.tips) +
                                   ", \"chord_collapses\": " + n(r.chord_collapses) + ", \"rotations\": " + n(r.rotations) +
                                   ", \"unfolds\": " + n(r.unfolds) + ", \"input_faces\": " + n(r.initial_faces) +
                                   ", \"refused\": {\"topology\": " + n(r.refused_topology) +

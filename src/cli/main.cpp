@@ -87,6 +87,9 @@ int main(int argc, char** argv) {
   s->add_flag("--preserve-boundary", simp.params.preserve_boundary,
               "keep the border exactly as it is (else border vertices slide along it, and move inwards by at most "
               "one input edge where a ragged outline leaves a border edge over nothing)");
+  s->add_flag("--keep-tips", simp.params.keep_tips,
+              "hold a vertex at each tip of the input (claws, a nose) that the smoothing would otherwise cut back "
+              "(ours; quads capping a tip narrower than themselves count as folded)");
   s->add_flag("--fast", simp.params.fast,
               "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");
   s->add_flag("--fit-to-input", simp.params.fit_to_input,

@@ -320,6 +320,24 @@ TEST_F(Cli, fit_to_input_lowers_the_distance) {
   EXPECT_LT(fitted, 0.8 * plain);
 }
 
+TEST_F(Cli, keep_tips_holds_a_vertex_on_each_spike) {
+  // Three spikes on a sphere: with --keep-tips the JSON counts three tips and the quads
+  // have a corner on each apex; without it the smoothing cuts them back.
+  write_tri_mesh_ply(p("spiky.ply"), fixtures::spiky_sphere(30, 60, 1.0, 0.25));
+  const Vec3 apexes[3] = {{0, 0, 2}, {0, 0, -2}, {2, 0, 0}};
+  for (bool keep : {false, true}) {
+    const CliRun r = run("simplify " + p("spiky.ply") + " " + p("s.ply") + " --faces 100 --json -q" +
+                         (keep ? " --keep-tips" : ""));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find(keep ? "\"tips\": 3," : "\"tips\": 0,"), std::string::npos) << r.out;
+    const MeshFile out = read_mesh(p("s.ply"));
+    int on = 0;
+    for (const Vec3& a : apexes)
+      on += std::any_of(out.positions.begin(), out.positions.end(), [&](const Vec3& x) { return (x - a).norm() < 1e-6; });
+    EXPECT_EQ(on, keep ? 3 : 0) << "keep " << keep;
+  }
+}
+
 TEST_F(Cli, a_fin_on_an_edge_is_removed_and_reported) {
   // Three triangles on edge 1-2 (the OBJ's numbering): the fin goes, though it is the
   // largest, and the plane's two triangles stay.

@@ -89,7 +89,13 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
     const bool bl = m_.is_border_vertex(l), br = m_.is_border_vertex(r);
     const Vec3 mid = 0.5 * (m_.position(l) + m_.position(r));
     SurfacePoint foot;
-    if (bl != br) {
+    if (held_[l] && held_[r]) {
+      ++rep_.refused_topology;
+      return false;
+    }
+    if (held_[l] || held_[r]) {  // a tip's vertex stays on it, as in a diagonal collapse
+      foot = ref_.closest_within(m_.position(held_[l] ? l : r), 0.0);
+    } else if (bl != br) {
       foot = ref_.closest_within(m_.position(bl ? l : r), 0.0);
     } else if (bl) {
       Vec3 p;
@@ -127,7 +133,10 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
     }
   }
   collapse_chord(m_, chord, chord_pos_);
-  for (Index i = 0; i < pairs; ++i) record_foot(chord.left[i], chord_feet_[i]);
+  for (Index i = 0; i < pairs; ++i) {
+    record_foot(chord.left[i], chord_feet_[i]);
+    held_[chord.left[i]] |= held_[chord.right[i]];
+  }
   ++rep_.chord_collapses;
   after_change(chord.left.data(), chord.left.data() + chord.left.size());
   return true;

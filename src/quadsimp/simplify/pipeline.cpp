@@ -32,6 +32,7 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
   SimplifyOptions opt;
   opt.target_faces = p.target_faces;
   opt.preserve_boundary = p.preserve_boundary;
+  opt.keep_tips = p.keep_tips;
   opt.passes = p.fast ? 1 : 2;
   opt.progress = progress;
   Fitmaps fitmaps;

@@ -24,6 +24,7 @@ struct SimplifyParams {
   double max_aspect = 3.0;       //!< adaptive: see SimplifyOptions::max_aspect (1: square quads)
   double reach = 0.045;          //!< adaptive: see SimplifyOptions::reach (0: no check)
   bool preserve_boundary = false;
+  bool keep_tips = false;        //!< see SimplifyOptions::keep_tips
   bool fast = false;             //!< one optimisation pass per collapse (the paper's loop)
   bool fit_to_input = false;     //!< afterwards, fit_to_surface(): vertices leave the input
 };

@@ -99,6 +99,7 @@ class Simplifier {
   Index count_beyond_reach() const;
   void count_refusal(Verdict v);  // the report's count for a verdict other than Ok
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
+  void hold_tips();
   void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
   void after_change(const Index* first, const Index* last);
   void check_invariants() const;  // SimplifyOptions::check_invariants
@@ -224,6 +225,9 @@ class Simplifier {
   // Reference normal under each vertex (at its last projection): faces are checked
   // against these, so that no sequence of small turns can flip a face.
   std::vector<Vec3> foot_normal_;
+  // SimplifyOptions::keep_tips: the vertices held where they are, at tips of M0. A
+  // collapse's survivor inherits the mark (both ends held: refused).
+  std::vector<char> held_;
   std::vector<Index> foot_face_;  // the triangle under each vertex: where project_near() starts
   std::vector<Index> centre_foot_;  // adaptive: the triangle under each face's centre at its last key
   // Adaptive mode: the F_S range the priority is clamped to, and the target size of each

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "quadsimp/fitmap/tips.h"
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/ops/cleaning.h"
 #include "quadsimp/ops/diagonal_collapse.h"
@@ -119,6 +120,12 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
   auto shape_after = [&](const Vec3& p, const Vec3& p_normal) {
     return for_each_face_after_collapse(m_, f, k, p, [&](Index g, const Vec3* q) { return shape_ok(g, q, p_normal); });
   };
+  if (held_[a] || held_[c]) {  // the survivor stays on the tip
+    if (held_[a] && held_[c]) return false;
+    pos = m_.position(held_[a] ? a : c);
+    foot = ref_.closest_within(pos, 0.0);
+    return foot.found() && shape_after(pos, ref_.normal_at(foot));
+  }
   if (m_.is_border_vertex(a) || m_.is_border_vertex(c)) {
     foot = ref_.closest_within(collapse_position(m_, f, k), 0.0);  // the border end is on M0 already
     pos = foot.point;
@@ -390,7 +397,9 @@ void Simplifier::requeue_region() {
 
 void Simplifier::cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot) {
   const Index b = m_.vertex(f, k + 1), d = m_.vertex(f, k + 3);
+  const char held = held_[m_.vertex(f, k)] | held_[m_.vertex(f, k + 2)];
   const Index v = collapse_diagonal(m_, f, k, pos);
+  held_[v] = held;
   record_foot(v, foot);
   ++rep_.collapses;
   after_change({v, b, d});
@@ -447,6 +456,26 @@ void Simplifier::check_invariants() const {
   if (faces != piece_faces_) throw std::logic_error("simplify: the pieces' face counts are off");
 }
 
+// SimplifyOptions::keep_tips. The mesh's vertices are M0's own at the start (the
+// conversion's pairs keep them), so a tip's vertex is the one whose foot is that corner.
+void Simplifier::hold_tips() {
+  held_.assign(m_.vertex_capacity(), 0);
+  const double count = opt_.target_faces > 0 ? double(opt_.target_faces) : rep_.predicted_faces;
+  if (!opt_.keep_tips || !(count > 0)) return;
+  constexpr double kMostTips = 0.05;  // of the count: tips are few, and every held vertex stiffens the mesh
+  TipOptions to;
+  to.radius = std::sqrt(ref_.area() / count);  // the side of `count` squares covering M0
+  to.max_tips = std::size_t(kMostTips * count) + 1;
+  const std::vector<Index> tips = find_tips(ref_.mesh(), to);
+  if (tips.empty()) return;
+  const TriMesh& t = ref_.mesh();
+  for (Index v = 0; v < m_.vertex_capacity(); ++v) {
+    if (!m_.is_vertex_live(v) || foot_face_[v] == kNone) continue;
+    for (Index u : t.faces[foot_face_[v]])
+      if (t.positions[u] == m_.position(v) && std::binary_search(tips.begin(), tips.end(), u)) held_[v] = 1;
+  }
+}
+
 SimplifyReport Simplifier::run() {
   const auto t0 = std::chrono::steady_clock::now();
   if (opt_.adaptive && (!opt_.fitmaps || opt_.fitmaps->s.size() != ref_.mesh().n_vertices() ||
@@ -487,6 +516,7 @@ SimplifyReport Simplifier::run() {
       const SurfacePoint s = ref_.closest_within(m_.position(v), 0.0);  // M0's own vertices
       if (s.found()) record_foot(v, s);
     }
+  hold_tips();
   border_noted_.assign(m_.vertex_capacity(), 0);
   for (Index v = 0; v < m_.vertex_capacity(); ++v) note_border(v);
   has_border_ = !border_candidates_.empty();
@@ -609,6 +639,7 @@ SimplifyReport Simplifier::run() {
   rep_.ran_out = measure && !halted && !rep_.cancelled;
   if (opt_.unfold && !opt_.refuse_folds && !rep_.cancelled) unfold();
   if (opt_.check_invariants) check_invariants();
+  for (Index v = 0; v < m_.vertex_capacity(); ++v) rep_.tips += m_.is_vertex_live(v) && held_[v];
   m_.compact();
   rep_.faces = m_.n_faces();
   rep_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

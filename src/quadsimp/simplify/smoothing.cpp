@@ -40,7 +40,7 @@ void Simplifier::smooth_vertex(Index v) {
   ++rep_.relaxations;
   const Vec3 p = m_.position(v);
   const bool border = m_.is_border_vertex(v);
-  if (border && (opt_.preserve_boundary || is_border_corner(v))) return;
+  if ((border && (opt_.preserve_boundary || is_border_corner(v))) || held_[v]) return;
   // One fan walk gives the springs' fixed point and the vertex normal (the sum of the
   // faces' diagonal cross products).
   Vec3 sum = Vec3::Zero(), area_normal = Vec3::Zero();

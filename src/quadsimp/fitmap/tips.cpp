@@ -1,0 +1,122 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/fitmap/tips.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace qs {
+namespace {
+
+// Each vertex's neighbours through edges (compressed rows), and whether it is on a border:
+// there some neighbour is reached through one triangle only.
+struct Rings {
+  std::vector<Index> start, next;
+  std::vector<char> border;
+};
+
+Rings rings_of(const TriMesh& t) {
+  const Index nv = t.n_vertices();
+  Rings r;
+  r.start.assign(nv + 1, 0);
+  for (const auto& f : t.faces)
+    for (Index v : f) r.start[v + 1] += 2;
+  for (Index v = 0; v < nv; ++v) r.start[v + 1] += r.start[v];
+  r.next.resize(r.start[nv]);
+  std::vector<Index> fill(r.start.begin(), r.start.end() - 1);
+  for (const auto& f : t.faces)
+    for (int k = 0; k < 3; ++k) {
+      r.next[fill[f[k]]++] = f[(k + 1) % 3];
+      r.next[fill[f[k]]++] = f[(k + 2) % 3];
+    }
+  // Sorted, an inner edge's other end appears twice in a row (once per triangle).
+  r.border.assign(nv, 0);
+  std::vector<Index> kept;
+  kept.reserve(r.next.size());
+  std::vector<Index> start(nv + 1, 0);
+  for (Index v = 0; v < nv; ++v) {
+    const auto first = r.next.begin() + r.start[v], last = r.next.begin() + r.start[v + 1];
+    std::sort(first, last);
+    for (auto i = first; i != last;) {
+      auto j = i;
+      while (j != last && *j == *i) ++j;
+      if (j - i == 1) r.border[v] = 1;
+      kept.push_back(*i);
+      i = j;
+    }
+    start[v + 1] = Index(kept.size());
+  }
+  r.start = std::move(start);
+  r.next = std::move(kept);
+  return r;
+}
+
+struct Scratch {
+  std::vector<Index> mark, queue;
+  Index stamp = 0;
+};
+
+}  // namespace
+
+std::vector<Index> find_tips(const TriMesh& t, const TipOptions& o) {
+  const Index nv = t.n_vertices();
+  if (nv == 0 || !(o.radius > 0)) return {};
+  const Rings rings = rings_of(t);
+  std::vector<Vec3> normal(nv, Vec3::Zero());
+  for (const auto& f : t.faces) {
+    const Vec3 n = t.area_normal(f);
+    for (Index v : f) normal[v] += n;
+  }
+  const double r = o.radius, near = 0.7 * r, rise = 0.1 * r;
+  std::vector<double> slope(nv, -1);  // the least fall at the rim; -1: not a tip
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  tbb::parallel_for(Index(0), nv, [&](Index v) {
+    if (rings.border[v] || !(normal[v].squaredNorm() > 0)) return;
+    Scratch& s = scratch.local();
+    if (s.mark.size() != nv) s.mark.assign(nv, 0), s.stamp = 0;
+    const Index stamp = ++s.stamp;
+    const Vec3 p = t.positions[v], n = normal[v].normalized();
+    s.queue.assign(1, v);
+    s.mark[v] = stamp;
+    double least = 1;
+    bool rim = false;
+    for (std::size_t i = 0; i < s.queue.size(); ++i) {
+      const Index u = s.queue[i];
+      for (Index j = rings.start[u]; j < rings.start[u + 1]; ++j) {
+        const Index w = rings.next[j];
+        if (s.mark[w] == stamp) continue;
+        s.mark[w] = stamp;
+        const Vec3 d = t.positions[w] - p;
+        const double len = d.norm();
+        // The rim: from 0.7 radius, and the first vertices past the ball, so that an input
+        // whose edges are as long as the radius still has one.
+        if (len >= near) least = std::min(least, -d.dot(n) / len), rim = true;
+        if (len >= r) continue;
+        // Anything above v, or a border within the ball: v is not the end of a closed tip.
+        if (d.dot(n) > rise || rings.border[w]) return;
+        s.queue.push_back(w);
+      }
+    }
+    if (rim && least >= o.min_slope) slope[v] = least;
+  });
+  std::vector<Index> candidates;
+  for (Index v = 0; v < nv; ++v)
+    if (slope[v] >= 0) candidates.push_back(v);
+  std::sort(candidates.begin(), candidates.end(),
+            [&](Index a, Index b) { return slope[a] != slope[b] ? slope[a] > slope[b] : a < b; });
+  // A tip's own neighbours qualify too, less steeply: the steepest stands for them all.
+  std::vector<Index> tips;
+  for (Index v : candidates) {
+    if (o.max_tips > 0 && tips.size() == o.max_tips) break;
+    const bool taken = std::any_of(tips.begin(), tips.end(), [&](Index w) {
+      return (t.positions[w] - t.positions[v]).squaredNorm() < r * r;
+    });
+    if (!taken) tips.push_back(v);
+  }
+  std::sort(tips.begin(), tips.end());
+  return tips;
+}
+
+}  // namespace qs
