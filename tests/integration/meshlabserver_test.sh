@@ -32,7 +32,7 @@ for f in "Quad Mesh Simplification" "Convert to Pure Quad Mesh" "Compute Fitmaps
 done
 for p in "Adaptive (fitmaps)" "Target number of quads" "Automatic halting (adaptive)" \
          "Halting share (automatic halting)" "Fitmap tolerance tau" "Largest aspect (adaptive)" "Reach (adaptive)" \
-         "Preserve boundary" "Fast (one pass)" "Fit vertices to the input" "Reference mesh" "Distance samples"; do
+         "Preserve boundary" "Keep tips" "Fast (one pass)" "Fit vertices to the input" "Reference mesh" "Distance samples"; do
   grep -q "$p" "$work/dump.txt" || fail "parameter '$p' missing from meshlabserver -d"
 done
 
@@ -82,20 +82,20 @@ PY
 
 # Runs the example script with some switches turned on, and the CLI with the matching
 # options, on the bunny: $work/NAME.json and $work/cli_NAME.json hold their stats.
-script_and_cli() {  # NAME "PARAM1 PARAM2..." CLI-OPTIONS...
-  local name=$1 params=$2 p
+script_and_cli() {  # NAME "PARAM1 PARAM2..." CLI-OPTIONS... (input: $script_input, else the bunny)
+  local name=$1 params=$2 p in=${script_input:-$bunny}
   shift 2
   cp "$script" "$work/$name.mlx"
   for p in $params; do
     sed -i "s/name=\"$p\" type=\"RichBool\" value=\"false\"/name=\"$p\" type=\"RichBool\" value=\"true\"/" "$work/$name.mlx"
     grep -q "name=\"$p\" type=\"RichBool\" value=\"true\"" "$work/$name.mlx" || { fail "$name: no $p in the script"; return 1; }
   done
-  if ! server -i "$bunny" -o "$work/$name.ply" -m ff -s "$work/$name.mlx" </dev/null ||
-     ! "$cli" stats "$bunny" "$work/$name.ply" --json --samples 50000 >"$work/$name.json"; then
-    fail "$name script failed on the bunny"; cat "$work/server.log"; return 1
+  if ! server -i "$in" -o "$work/$name.ply" -m ff -s "$work/$name.mlx" </dev/null ||
+     ! "$cli" stats "$in" "$work/$name.ply" --json --samples 50000 >"$work/$name.json"; then
+    fail "$name script failed on $(basename "$in")"; cat "$work/server.log"; return 1
   fi
-  "$cli" simplify "$bunny" "$work/cli_$name.ply" -q "$@" >/dev/null
-  "$cli" stats "$bunny" "$work/cli_$name.ply" --json --samples 50000 >"$work/cli_$name.json"
+  "$cli" simplify "$in" "$work/cli_$name.ply" -q "$@" >/dev/null
+  "$cli" stats "$in" "$work/cli_$name.ply" --json --samples 50000 >"$work/cli_$name.json"
 }
 
 # 3b. Adaptive mode with automatic halting from a script: it stops where the CLI does.
@@ -170,6 +170,24 @@ assert abs(a["rms_e3"] - b["rms_e3"]) <= 0.01 * a["rms_e3"], (a["rms_e3"], b["rm
 assert b["rms_e3"] < 0.8 * plain["rms_e3"], (b["rms_e3"], plain["rms_e3"])
 print("ok: fit to the input: plugin and CLI agree, RMS", plain["rms_e3"], "->", b["rms_e3"])
 PY
+fi
+
+# 3d. Tips kept from a script, on the armadillo (its claws): the same as the CLI's
+#     --keep-tips, and closer than the CLI without it.
+armadillo=$datasets/armadillo.ply
+if [ -f "$armadillo" ] && script_input=$armadillo script_and_cli tips "KeepTips" --faces 3000 --keep-tips; then
+  "$cli" simplify "$armadillo" "$work/cli_plain_arm.ply" -q --faces 3000 >/dev/null
+  "$cli" stats "$armadillo" "$work/cli_plain_arm.ply" --json --samples 50000 >"$work/cli_plain_arm.json"
+  python3 - "$work/cli_tips.json" "$work/tips.json" "$work/cli_plain_arm.json" <<'PY' || fail "tips: plugin and CLI differ"
+import json, sys
+a, b, plain = (json.load(open(p)) for p in sys.argv[1:4])
+for k in ("faces", "vertices", "max_valence", "regular_percent"):
+    assert a[k] == b[k], (k, a[k], b[k])
+assert b["rms_e3"] < 0.9 * plain["rms_e3"], (b["rms_e3"], plain["rms_e3"])
+print("ok: tips kept: plugin and CLI agree, RMS", plain["rms_e3"], "->", b["rms_e3"])
+PY
+elif [ ! -f "$armadillo" ]; then
+  echo "skip: no $armadillo for the tips case"
 fi
 
 # 4. Bad input: the filter refuses with our message, and MeshLab does not crash.

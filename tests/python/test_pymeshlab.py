@@ -490,6 +490,18 @@ def test_fit_to_input_same_as_the_cli_and_closer(bunny_path, cli, tmp_path):
     assert q["rms_e3"] < 0.8 * plain["rms_e3"]
 
 
+def test_keep_tips_same_as_the_cli_and_closer(cli, tmp_path):
+    # The armadillo's claws: held with keeptips, as with the CLI's --keep-tips.
+    armadillo = SHARED / "armadillo.ply"
+    if not armadillo.exists():
+        pytest.skip("no ../shared/datasets/armadillo.ply")
+    plain, _ = plugin_and_cli(str(armadillo), cli, tmp_path, {"targetfacenum": 3000}, ["--faces", "3000"])
+    q, stats = plugin_and_cli(str(armadillo), cli, tmp_path, {"targetfacenum": 3000, "keeptips": True},
+                              ["--faces", "3000", "--keep-tips"])
+    assert q["rms_e3"] == pytest.approx(stats["rms_e3"], rel=0.01)
+    assert q["rms_e3"] < 0.9 * plain["rms_e3"]
+
+
 def test_adaptive_automatic_halting_stops_where_the_cli_does(bunny_path, cli, tmp_path):
     # Same input, same fitmaps, same loop: the filter and the CLI halt at the same count.
     q, _ = plugin_and_cli(bunny_path, cli, tmp_path, {"adaptive": True, "autohalt": True},
