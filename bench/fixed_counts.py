@@ -8,7 +8,7 @@ for every version of the code, move much less; bench/RESULTS.md judges changes t
 adaptive mode's keys and sizes on their mean gain and regular share.
 
     python3 bench/fixed_counts.py [--quadsimp build/src/quadsimp] [--datasets ../shared/datasets] [--samples 300000]
-                                  [--adaptive-args="--m-factor 0.8"]
+                                  [--adaptive-args="--m-factor 0.8"] [--both-args="--keep-tips"]
 """
 import os
 import statistics
@@ -21,14 +21,14 @@ COUNTS = {"bunny": (600, 900, 1300, 2000), "gargoyle": (800, 1100, 1500, 2000), 
 
 
 def main():
-    args = parse_args(__doc__, list(COUNTS), samples=300000, adaptive_args=True)
+    args = parse_args(__doc__, list(COUNTS), samples=300000, adaptive_args=True, both_args=True)
     print(f"Distances sampled with {args.samples} points per surface plus vertices.\n")
     columns = table_header("| model | quads | uniform RMS e-3 | adaptive RMS e-3 | adaptive lower by | adaptive regular % |")
     gains, regular, per_model = [], [], {}
     for model, mesh in meshes(args, columns):
         for faces in COUNTS[model]:
-            u = run(args.quadsimp, mesh, faces, args.samples)
-            a = run(args.quadsimp, mesh, faces, args.samples, ["--adaptive", *args.adaptive_args])
+            u = run(args.quadsimp, mesh, faces, args.samples, args.both_args)
+            a = run(args.quadsimp, mesh, faces, args.samples, ["--adaptive", *args.adaptive_args, *args.both_args])
             g = 100 * (1 - a["rms_e3"] / u["rms_e3"])
             gains.append(g)
             regular.append(a["regular_percent"])

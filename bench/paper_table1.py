@@ -91,9 +91,10 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False, python=False, extra=(), datasets=True):
+def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False, both_args=False, python=False, extra=(),
+               datasets=True):
     """The options the bench scripts take (--draws: Tables 2 and 3 only; --adaptive-args:
-    the fixed counts only; --python, a Python with pymeshlab: the MeshLab comparison and
+    the fixed counts only; --both-args: Tables 2 and 3 and the fixed counts; --python, a Python with pymeshlab: the MeshLab comparison and
     the open scans; extra: (flag, argparse keywords) of one script's own; datasets=False
     for a script that makes its inputs instead of reading the shared datasets)."""
     here = os.path.dirname(os.path.abspath(__file__))
@@ -111,6 +112,9 @@ def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False, pytho
     if adaptive_args:
         ap.add_argument("--adaptive-args", default="", type=str.split,
                         help='more options for the adaptive runs, e.g. --adaptive-args="--m-factor 0.8"')
+    if both_args:
+        ap.add_argument("--both-args", default="", type=str.split,
+                        help='more options for the runs of both modes, e.g. --both-args="--keep-tips"')
     for flag, keywords in extra:
         ap.add_argument(flag, **keywords)
     return ap.parse_args()

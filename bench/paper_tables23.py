@@ -12,6 +12,7 @@ at most one float32 step): where it halts depends on rounding, so the table give
 spread of the halting counts and the median gain over the draws.
 
     python3 bench/paper_tables23.py [--quadsimp build/src/quadsimp] [--datasets ../shared/datasets] [--draws 8]
+                                    [--both-args="--keep-tips"]
 """
 import os
 import random
@@ -49,7 +50,7 @@ def gain(a, u, key):
 
 
 def main():
-    args = parse_args(__doc__, list(PAPER), draws=8)
+    args = parse_args(__doc__, list(PAPER), draws=8, both_args=True)
 
     print(f"Machine: {machine()}; fitmaps use both cores, simplification one. Distances sampled with "
           f"{args.samples} points per surface plus vertices.\n")
@@ -65,10 +66,10 @@ def main():
         for model, mesh in meshes(args, columns):
             pa, pu = PAPER[model]
             if halting is None:
-                a = run(args.quadsimp, mesh, pa[0], args.samples, ["--adaptive"])
+                a = run(args.quadsimp, mesh, pa[0], args.samples, ["--adaptive", *args.both_args])
             else:
-                a = run(args.quadsimp, mesh, 0, args.samples, ["--adaptive"] + halting)
-            u = run(args.quadsimp, mesh, a["faces"], args.samples)
+                a = run(args.quadsimp, mesh, 0, args.samples, ["--adaptive", *halting, *args.both_args])
+            u = run(args.quadsimp, mesh, a["faces"], args.samples, args.both_args)
             print(row(model, "adaptive", a, pa))
             print(row(model, "uniform", u, pu))
             summary.append(f"{model}: adaptive vs uniform at {a['faces']} faces: RMS {gain(a, u, 'rms_e3')} "
@@ -134,8 +135,8 @@ def draws(args):
                 if k:
                     src = os.path.join(tmp, f"{model}-{k}.ply")
                     rerounded(mesh, src, k)
-                ra = run(args.quadsimp, src, 0, args.samples, ["--adaptive", "--auto-halt"])
-                ru = run(args.quadsimp, src, ra["faces"], args.samples)
+                ra = run(args.quadsimp, src, 0, args.samples, ["--adaptive", "--auto-halt", *args.both_args])
+                ru = run(args.quadsimp, src, ra["faces"], args.samples, args.both_args)
                 counts.append(ra["faces"])
                 a.append(ra["rms_e3"])
                 u.append(ru["rms_e3"])
@@ -160,8 +161,8 @@ def window(args, halted):
             continue  # the models with a distance target
         mesh = dataset(args, model)
         counts = [round(faces * (1 + 0.02 * i)) for i in range(-3, 4)]
-        u = [run(args.quadsimp, mesh, n, args.samples)["rms_e3"] for n in counts]
-        a = [run(args.quadsimp, mesh, n, args.samples, ["--adaptive"])["rms_e3"] for n in counts]
+        u = [run(args.quadsimp, mesh, n, args.samples, args.both_args)["rms_e3"] for n in counts]
+        a = [run(args.quadsimp, mesh, n, args.samples, ["--adaptive", *args.both_args])["rms_e3"] for n in counts]
         singles = ", ".join(f"{100 * (1 - x / y):.0f}%" for x, y in zip(a, u))
         print(f"| {model} | {counts[0]}-{counts[-1]} | {statistics.median(u):.2f} ({min(u):.2f}-{max(u):.2f}) "
               f"| {statistics.median(a):.2f} ({min(a):.2f}-{max(a):.2f}) "
