@@ -91,15 +91,19 @@ std::vector<Index> find_tips(const TriMesh& t, const TipOptions& o) {
         const Vec3 d = t.positions[w] - p;
         const double len = d.norm();
         // The rim: from 0.7 radius, and the first vertices past the ball, so that an input
-        // whose edges are as long as the radius still has one.
-        if (len >= near) least = std::min(least, -d.dot(n) / len), rim = true;
+        // whose edges are as long as the radius still has one. Most vertices fail here early.
+        if (len >= near) {
+          const double fall = -d.dot(n) / len;
+          if (fall < o.min_slope) return;
+          least = std::min(least, fall), rim = true;
+        }
         if (len >= r) continue;
         // Anything above v, or a border within the ball: v is not the end of a closed tip.
         if (d.dot(n) > rise || rings.border[w]) return;
         s.queue.push_back(w);
       }
     }
-    if (rim && least >= o.min_slope) slope[v] = least;
+    if (rim) slope[v] = least;
   });
   std::vector<Index> candidates;
   for (Index v = 0; v < nv; ++v)
