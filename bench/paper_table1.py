@@ -94,7 +94,8 @@ def machine():
 def parse_args(doc, models, draws=0, samples=1000000, adaptive_args=False, both_args=False, python=False, extra=(),
                datasets=True):
     """The options the bench scripts take (--draws: Tables 2 and 3 only; --adaptive-args:
-    the fixed counts only; --both-args: Tables 2 and 3 and the fixed counts; --python, a Python with pymeshlab: the MeshLab comparison and
+    the fixed counts only; --both-args: Tables 2 and 3 and the fixed counts; --python, a
+    Python with pymeshlab: the MeshLab comparison and
     the open scans; extra: (flag, argparse keywords) of one script's own; datasets=False
     for a script that makes its inputs instead of reading the shared datasets)."""
     here = os.path.dirname(os.path.abspath(__file__))

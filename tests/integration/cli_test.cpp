@@ -333,7 +333,8 @@ TEST_F(Cli, keep_tips_holds_a_vertex_on_each_spike) {
     const MeshFile out = read_mesh(p("s.ply"));
     int on = 0;
     for (const Vec3& a : apexes)
-      on += std::any_of(out.positions.begin(), out.positions.end(), [&](const Vec3& x) { return (x - a).norm() < 1e-6; });
+      on += std::any_of(out.positions.begin(), out.positions.end(),
+                        [&](const Vec3& x) { return (x - a).norm() < 1e-6; });
     EXPECT_EQ(on, keep ? 3 : 0) << "keep " << keep;
   }
 }

@@ -15,8 +15,9 @@ namespace qs {
 struct TipOptions {
   double radius = 0;        //!< the scale: about one edge of the result
   //! Every vertex from 0.7 radius from the tip to the first ones past the radius lies
-  //! below it along its normal by at least this share of its distance (0.5: a cone of half-angle 60
-  //! degrees or sharper; a sphere is a tip only if its radius is under `radius`).
+  //! below it along its normal by at least this share of its distance (0.5: a cone of
+  //! half-angle 60 degrees or sharper; a sphere is a tip only if its radius is under
+  //! `radius`).
   double min_slope = 0.5;
   std::size_t max_tips = 0;  //!< the steepest ones kept (0: all)
 };
@@ -24,8 +25,8 @@ struct TipOptions {
 //! The tips of a clean triangle mesh: interior vertices whose neighbourhood (the part of
 //! the ball of `radius` connected to them through edges inside it) lies entirely below them
 //! along their normal, within a tenth of the radius, and falls away at `min_slope` all
-//! round at its rim (its vertices from 0.7 radius out, and the first ones past it); of tips nearer each other than the radius, the steepest only. Sorted
-//! by vertex index. Ridges (a wing's edge) and flat or saddle-shaped places are not tips:
+//! round at its rim (its vertices from 0.7 radius out, and the first ones past it); of
+//! tips nearer each other than the radius, the steepest only. Sorted by vertex index. Ridges (a wing's edge) and flat or saddle-shaped places are not tips:
 //! along a ridge the surface does not fall away. In parallel (TBB); deterministic.
 std::vector<Index> find_tips(const TriMesh& mesh, const TipOptions& options);
 
