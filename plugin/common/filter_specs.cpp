@@ -109,7 +109,7 @@ std::vector<ParamSpec> params_of(FilterId id) {
       {kSimplify, "KeepTips", "Keep tips", ParamKind::Bool, 0, 0, 1,
        "Hold a vertex at each point the input ends in at the scale of the quads (a claw, a toe, a nose; ours): the "
        "smoothing leaves it in place and collapses keep it there. Off: the smoothing can cut such tips back (the "
-       "armadillo at 2,000 quads: 24% lower RMS distance with it in uniform mode, 4% in adaptive mode). The quads "
+       "armadillo at 2,000 quads: 23% lower RMS distance with it in uniform mode, 4% in adaptive mode). The quads "
        "capping a tip narrower than themselves are folded, and the log counts them."},
       {kSimplify, "Fast", "Fast (one pass)", ParamKind::Bool, 0, 0, 1,
        "One rotation and smoothing pass after each collapse, as in the paper: about 20% faster, with a few "
