@@ -2,13 +2,16 @@
 // Fitmaps on all cores: the Stanford bunny of glmark2-data (69,666 triangles), and a
 // 1.1-million-triangle mesh made by splitting every bunny triangle into four, twice.
 // The bunny run also reports the median relative difference to the brute-force
-// reference at every 97th vertex.
+// reference at every 97th vertex. The tips (`--keep-tips`) of the 1.1M mesh at the scales
+// of 500, 5,000 and 50,000 quads.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 
 #include "quadsimp/fitmap/fitmap.h"
+#include "quadsimp/fitmap/tips.h"
 #include "quadsimp/io/load_input.h"
 
 namespace {
@@ -45,7 +48,23 @@ void BM_Fitmaps1M(benchmark::State& state) {
   state.counters["triangles"] = t.n_faces();
 }
 
+void BM_Tips1M(benchmark::State& state) {
+  if (!std::ifstream(kBunny)) return state.SkipWithError("glmark2-data's bunny.obj is not installed");
+  const qs::TriMesh t = qs::split_in_four(qs::split_in_four(qs::load_input(kBunny).reference));
+  double area = 0;
+  for (const auto& f : t.faces) area += 0.5 * t.area_normal(f).norm();
+  const double quads = double(state.range(0));
+  qs::TipOptions o;  // as the loop sets them for a run to that many quads
+  o.radius = std::sqrt(area / quads);
+  o.max_tips = std::size_t(0.05 * quads) + 1;
+  std::size_t found = 0;
+  for (auto _ : state) found = qs::find_tips(t, o).size();
+  state.counters["triangles"] = t.n_faces();
+  state.counters["tips"] = double(found);
+}
+
 BENCHMARK(BM_FitmapsBunny)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Fitmaps1M)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_Tips1M)->Arg(500)->Arg(5000)->Arg(50000)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
