@@ -335,6 +335,34 @@ TEST(Simplify, flat_square_keeps_its_corners_and_coarsens_its_border) {
   }
 }
 
+TEST(Simplify, a_kept_tip_never_pulls_a_border_vertex_off_the_border) {
+  // Spikes on a sphere open from its equator down, asked for a few quads: collapses and
+  // chord collapses come to join a tip's vertex with a border vertex. Neither may go to
+  // the other's place: the tip's would take the border off M0's border.
+  for (const double length : {1.0, 2.0}) {
+    for (const Index target : {Index(6), Index(10), Index(15), Index(20)}) {
+      TriMesh t = spiky_sphere(30, 60, length, 0.25);
+      t.faces.erase(std::remove_if(t.faces.begin(), t.faces.end(),
+                                   [&](const auto& f) {
+                                     return std::max({t.positions[f[0]].z(), t.positions[f[1]].z(),
+                                                      t.positions[f[2]].z()}) < 0.0;
+                                   }),
+                    t.faces.end());
+      Case c = prepare(std::move(t));
+      const ReferenceSurface ref(c.tri);
+      SimplifyOptions opt;
+      opt.target_faces = target;
+      opt.keep_tips = true;
+      opt.inset_border = false;  // which moves border vertices inwards on purpose
+      opt.check_invariants = true;
+      const SimplifyReport r = simplify(c.quads, ref, opt);
+      validate(c.quads);
+      EXPECT_GT(r.tips, 0u) << "length " << length << " target " << target;
+      EXPECT_LT(border_gap(c.quads, ref), 1e-6 * ref.mean_edge_length()) << "length " << length << " target " << target;
+    }
+  }
+}
+
 TEST(Simplify, border_moves_inwards_where_a_ragged_outline_leaves_it_over_nothing) {
   // The border edges of the quads cut across the notches of a ragged outline, and rays
   // cast along the quads' normals there miss the input. Moving the border vertices

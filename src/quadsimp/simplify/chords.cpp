@@ -89,7 +89,7 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
     const bool bl = m_.is_border_vertex(l), br = m_.is_border_vertex(r);
     const Vec3 mid = 0.5 * (m_.position(l) + m_.position(r));
     SurfacePoint foot;
-    if (held_[l] && held_[r]) {
+    if (held_[l] ? held_[r] || br : held_[r] && bl) {  // both pinned, each to its own place
       ++rep_.refused_topology;
       return false;
     }

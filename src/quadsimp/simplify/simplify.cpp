@@ -121,7 +121,8 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
     return for_each_face_after_collapse(m_, f, k, p, [&](Index g, const Vec3* q) { return shape_ok(g, q, p_normal); });
   };
   if (held_[a] || held_[c]) {  // the survivor stays on the tip
-    if (held_[a] && held_[c]) return false;
+    // Both ends pinned, each to its own place (two tips, or a tip and the border): refused.
+    if (held_[a] ? held_[c] || m_.is_border_vertex(c) : m_.is_border_vertex(a)) return false;
     pos = m_.position(held_[a] ? a : c);
     foot = ref_.closest_within(pos, 0.0);
     return foot.found() && shape_after(pos, ref_.normal_at(foot));
