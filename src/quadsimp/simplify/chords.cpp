@@ -89,12 +89,13 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
     const bool bl = m_.is_border_vertex(l), br = m_.is_border_vertex(r);
     const Vec3 mid = 0.5 * (m_.position(l) + m_.position(r));
     SurfacePoint foot;
-    if (held_[l] ? held_[r] || br : held_[r] && bl) {  // both pinned, each to its own place
+    Index tip;
+    if (!merge_keeps_tip(l, r, tip)) {
       ++rep_.refused_topology;
       return false;
     }
-    if (held_[l] || held_[r]) {  // a tip's vertex stays on it, as in a diagonal collapse
-      foot = ref_.closest_within(m_.position(held_[l] ? l : r), 0.0);
+    if (tip != kNone) {  // a tip's vertex stays on it, as in a diagonal collapse
+      foot = ref_.closest_within(m_.position(tip), 0.0);
     } else if (bl != br) {
       foot = ref_.closest_within(m_.position(bl ? l : r), 0.0);
     } else if (bl) {

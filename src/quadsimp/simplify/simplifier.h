@@ -84,6 +84,14 @@ class Simplifier {
     return opt_.max_valence > 0 &&
            m_.valence(m_.vertex(f, k)) + m_.valence(m_.vertex(f, k + 2)) - 2 > opt_.max_valence;
   }
+  // A merge of u and w (a collapse's diagonal ends, a chord's pair) keeps a tip's vertex
+  // where it is: `tip` is that vertex, or kNone. False when the other is pinned to a
+  // place of its own too (a tip, or M0's border): the merge is refused.
+  bool merge_keeps_tip(Index u, Index w, Index& tip) const {
+    tip = held_[u] ? u : held_[w] ? w : kNone;
+    const Index other = tip == u ? w : u;
+    return tip == kNone || !(held_[other] || m_.is_border_vertex(other));
+  }
   bool place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
   // Adaptive mode's checks on the faces a collapse grows: the M-fitmap, then the reach.
   Verdict check_grown_faces(Index f, Index k, const Vec3& pos, Bound bound) const;

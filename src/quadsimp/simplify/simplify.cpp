@@ -120,10 +120,10 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
   auto shape_after = [&](const Vec3& p, const Vec3& p_normal) {
     return for_each_face_after_collapse(m_, f, k, p, [&](Index g, const Vec3* q) { return shape_ok(g, q, p_normal); });
   };
-  if (held_[a] || held_[c]) {  // the survivor stays on the tip
-    // Both ends pinned, each to its own place (two tips, or a tip and the border): refused.
-    if (held_[a] ? held_[c] || m_.is_border_vertex(c) : m_.is_border_vertex(a)) return false;
-    pos = m_.position(held_[a] ? a : c);
+  Index tip;
+  if (!merge_keeps_tip(a, c, tip)) return false;
+  if (tip != kNone) {
+    pos = m_.position(tip);
     foot = ref_.closest_within(pos, 0.0);
     return foot.found() && shape_after(pos, ref_.normal_at(foot));
   }
