@@ -55,3 +55,32 @@ TEST(SortSpatially, keeps_the_surface_and_groups_neighbours) {
   TriMesh copy = t;
   EXPECT_EQ(clean(copy).flipped_faces, 0u);  // still consistently oriented
 }
+
+TEST(VertexRings, neighbours_once_each_in_order_and_the_border_marked) {
+  // A 3 x 3 grid of squares: vertex 5 (column 1, row 1) is inner, with its four axis
+  // neighbours and the diagonal ones its triangles share; the outline's 12 are border.
+  const TriMesh t = tri_grid(3, 3);
+  const VertexRings r = vertex_rings(t);
+  auto share_a_face = [&](Index v, Index w) {
+    return std::any_of(t.faces.begin(), t.faces.end(), [&](const auto& f) {
+      return std::count(f.begin(), f.end(), v) && std::count(f.begin(), f.end(), w);
+    });
+  };
+  ASSERT_EQ(r.start.size(), t.positions.size() + 1);
+  Index border = 0;
+  for (Index v = 0; v < t.n_vertices(); ++v) {
+    const std::vector<Index> ring(r.next.begin() + r.start[v], r.next.begin() + r.start[v + 1]);
+    EXPECT_TRUE(std::is_sorted(ring.begin(), ring.end()));
+    EXPECT_EQ(std::adjacent_find(ring.begin(), ring.end()), ring.end()) << "vertex " << v;
+    for (Index w : ring) EXPECT_TRUE(share_a_face(v, w)) << v << " " << w;
+    const Vec3& p = t.positions[v];
+    EXPECT_EQ(bool(r.border[v]), p.x() == 0 || p.x() == 1 || p.y() == 0 || p.y() == 1) << "vertex " << v;
+    border += r.border[v];
+  }
+  EXPECT_EQ(border, 12u);
+  const std::vector<Index> five(r.next.begin() + r.start[5], r.next.begin() + r.start[6]);
+  for (Index w : {1u, 4u, 6u, 9u}) EXPECT_NE(std::find(five.begin(), five.end(), w), five.end()) << w;
+  // A closed sphere has no border.
+  const VertexRings s = vertex_rings(tri_sphere(6, 8));
+  EXPECT_EQ(std::count(s.border.begin(), s.border.end(), 1), 0);
+}

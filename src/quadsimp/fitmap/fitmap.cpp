@@ -107,20 +107,9 @@ struct Incidence {
     std::vector<Index> fill(vt_start.begin(), vt_start.end() - 1);
     for (Index f = 0; f < t.n_faces(); ++f)
       for (Index v : t.faces[f]) vt[fill[v]++] = f;
-    std::vector<std::vector<Index>> nb(nv);
-    for (const auto& f : t.faces)
-      for (int k = 0; k < 3; ++k) {
-        nb[f[k]].push_back(f[(k + 1) % 3]);
-        nb[f[k]].push_back(f[(k + 2) % 3]);
-      }
-    vv_start.assign(nv + 1, 0);
-    for (Index v = 0; v < nv; ++v) {
-      std::sort(nb[v].begin(), nb[v].end());
-      nb[v].erase(std::unique(nb[v].begin(), nb[v].end()), nb[v].end());
-      vv_start[v + 1] = vv_start[v] + Index(nb[v].size());
-    }
-    vv.reserve(vv_start.back());
-    for (auto& n : nb) vv.insert(vv.end(), n.begin(), n.end());
+    VertexRings rings = vertex_rings(t);
+    vv_start = std::move(rings.start);
+    vv = std::move(rings.next);
   }
 };
 

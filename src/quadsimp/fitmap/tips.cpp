@@ -10,49 +10,6 @@
 namespace qs {
 namespace {
 
-// Each vertex's neighbours through edges (compressed rows), and whether it is on a border:
-// there some neighbour is reached through one triangle only.
-struct Rings {
-  std::vector<Index> start, next;
-  std::vector<char> border;
-};
-
-Rings rings_of(const TriMesh& t) {
-  const Index nv = t.n_vertices();
-  Rings r;
-  r.start.assign(nv + 1, 0);
-  for (const auto& f : t.faces)
-    for (Index v : f) r.start[v + 1] += 2;
-  for (Index v = 0; v < nv; ++v) r.start[v + 1] += r.start[v];
-  r.next.resize(r.start[nv]);
-  std::vector<Index> fill(r.start.begin(), r.start.end() - 1);
-  for (const auto& f : t.faces)
-    for (int k = 0; k < 3; ++k) {
-      r.next[fill[f[k]]++] = f[(k + 1) % 3];
-      r.next[fill[f[k]]++] = f[(k + 2) % 3];
-    }
-  // Sorted, an inner edge's other end appears twice in a row (once per triangle).
-  r.border.assign(nv, 0);
-  std::vector<Index> kept;
-  kept.reserve(r.next.size());
-  std::vector<Index> start(nv + 1, 0);
-  for (Index v = 0; v < nv; ++v) {
-    const auto first = r.next.begin() + r.start[v], last = r.next.begin() + r.start[v + 1];
-    std::sort(first, last);
-    for (auto i = first; i != last;) {
-      auto j = i;
-      while (j != last && *j == *i) ++j;
-      if (j - i == 1) r.border[v] = 1;
-      kept.push_back(*i);
-      i = j;
-    }
-    start[v + 1] = Index(kept.size());
-  }
-  r.start = std::move(start);
-  r.next = std::move(kept);
-  return r;
-}
-
 struct Scratch {
   std::vector<Index> mark, queue;
   Index stamp = 0;
@@ -63,7 +20,7 @@ struct Scratch {
 std::vector<Index> find_tips(const TriMesh& t, const TipOptions& o) {
   const Index nv = t.n_vertices();
   if (nv == 0 || !(o.radius > 0)) return {};
-  const Rings rings = rings_of(t);
+  const VertexRings rings = vertex_rings(t);
   std::vector<Vec3> normal(nv, Vec3::Zero());
   for (const auto& f : t.faces) {
     const Vec3 n = t.area_normal(f);

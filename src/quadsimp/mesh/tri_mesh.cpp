@@ -125,6 +125,38 @@ void sort_spatially(TriMesh& m) {
 
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& t) { return adjacency_from(t, corners_around(t)); }
 
+VertexRings vertex_rings(const TriMesh& t) {
+  const Index nv = t.n_vertices();
+  VertexRings r;
+  r.start.assign(nv + 1, 0);
+  for (const auto& f : t.faces)
+    for (Index v : f) r.start[v + 1] += 2;
+  std::partial_sum(r.start.begin(), r.start.end(), r.start.begin());
+  std::vector<Index> all(r.start[nv]), fill(r.start.begin(), r.start.end() - 1);
+  for (const auto& f : t.faces)
+    for (int k = 0; k < 3; ++k) {
+      all[fill[f[k]]++] = f[(k + 1) % 3];
+      all[fill[f[k]]++] = f[(k + 2) % 3];
+    }
+  // Sorted, an inner edge's other end appears twice in a row (once per triangle).
+  r.border.assign(nv, 0);
+  r.next.reserve(all.size() / 2);
+  for (Index v = 0; v < nv; ++v) {
+    const auto first = all.begin() + r.start[v], last = all.begin() + r.start[v + 1];
+    std::sort(first, last);
+    r.start[v] = Index(r.next.size());
+    for (auto i = first; i != last;) {
+      const auto j = std::find_if(i, last, [&](Index x) { return x != *i; });
+      if (j - i == 1) r.border[v] = 1;
+      r.next.push_back(*i);
+      i = j;
+    }
+  }
+  r.start[nv] = Index(r.next.size());
+  return r;
+}
+
+
 std::pair<Vec3, Vec3> used_bbox(const TriMesh& m) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const auto& f : m.faces)

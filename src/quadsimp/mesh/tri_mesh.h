@@ -77,6 +77,15 @@ Vec3 working_origin(const std::vector<Vec3>& positions);
 //! border. \pre edge-manifold (see clean()).
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& mesh);
 
+//! Each vertex's neighbours through edges, as compressed rows in increasing order: those
+//! of v are next[start[v]] to next[start[v + 1] - 1]. `border` marks the vertices with an
+//! edge in one triangle only.
+struct VertexRings {
+  std::vector<Index> start, next;
+  std::vector<char> border;
+};
+VertexRings vertex_rings(const TriMesh& mesh);
+
 //! Connected component id per face (faces sharing an edge), and their count, from
 //! the mesh's triangle_adjacency(); with `joined`, only neighbours f, g for which
 //! joined(f, g) holds are in the same component.
