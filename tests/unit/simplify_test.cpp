@@ -69,6 +69,15 @@ TriMesh without_faces(TriMesh t, Drop&& drop) {
   return t;
 }
 
+// t without the triangles lying wholly below the height z (or at it).
+TriMesh open_below(TriMesh t, double z) {
+  std::vector<std::array<Index, 3>> kept;
+  for (const auto& f : t.faces)
+    if (std::max({t.positions[f[0]].z(), t.positions[f[1]].z(), t.positions[f[2]].z()}) > z) kept.push_back(f);
+  t.faces = std::move(kept);
+  return t;
+}
+
 // A flat n x n grid whose left and right sides are ragged, like a range scan's outline:
 // each row loses 0 to `deepest` cells (drawn) at either end.
 TriMesh ragged_grid(int n, unsigned seed, int deepest = 1) {
@@ -205,6 +214,23 @@ SimplifyReport run_and_check(QuadMesh& quads, Index target, const ReferenceSurfa
   return r;
 }
 
+// t prepared as the CLI prepares a file and simplified to `target` quads, with the
+// border inset off (it moves border vertices inwards on purpose); `gap` is then the
+// largest distance from a border vertex of the result to M0's border.
+SimplifyReport simplify_open(const TriMesh& t, Index target, bool keep_tips, double& gap) {
+  Input in = prepare_input(MeshFile{t.positions, t.faces, {}}, "open");
+  const ReferenceSurface ref(in.reference);
+  SimplifyOptions opt;
+  opt.target_faces = target;
+  opt.keep_tips = keep_tips;
+  opt.inset_border = false;
+  opt.check_invariants = true;
+  const SimplifyReport r = simplify(in.quads, ref, opt);
+  validate(in.quads);
+  gap = border_gap(in.quads, ref) / ref.mean_edge_length();
+  return r;
+}
+
 }  // namespace
 
 TEST(Simplify, sphere_reaches_target) {
@@ -336,30 +362,43 @@ TEST(Simplify, flat_square_keeps_its_corners_and_coarsens_its_border) {
 }
 
 TEST(Simplify, a_kept_tip_never_pulls_a_border_vertex_off_the_border) {
-  // Spikes on a sphere open from its equator down, asked for a few quads: collapses and
-  // chord collapses come to join a tip's vertex with a border vertex. Neither may go to
-  // the other's place: the tip's would take the border off M0's border.
+  // Spikes on a sphere open from its equator down, or on a sphere of 60 spikes open
+  // below z = 0.6, asked for a few quads: collapses, or chord collapses, come to join a
+  // tip's vertex with a border vertex. Neither may go to the other's place: the tip's
+  // would take the border off M0's border.
+  double gap;
   for (const double length : {1.0, 2.0}) {
     for (const Index target : {Index(6), Index(10), Index(15), Index(20)}) {
-      TriMesh t = spiky_sphere(30, 60, length, 0.25);
-      t.faces.erase(std::remove_if(t.faces.begin(), t.faces.end(),
-                                   [&](const auto& f) {
-                                     return std::max({t.positions[f[0]].z(), t.positions[f[1]].z(),
-                                                      t.positions[f[2]].z()}) < 0.0;
-                                   }),
-                    t.faces.end());
-      Case c = prepare(std::move(t));
-      const ReferenceSurface ref(c.tri);
-      SimplifyOptions opt;
-      opt.target_faces = target;
-      opt.keep_tips = true;
-      opt.inset_border = false;  // which moves border vertices inwards on purpose
-      opt.check_invariants = true;
-      const SimplifyReport r = simplify(c.quads, ref, opt);
-      validate(c.quads);
-      EXPECT_GT(r.tips, 0u) << "length " << length << " target " << target;
-      EXPECT_LT(border_gap(c.quads, ref), 1e-6 * ref.mean_edge_length()) << "length " << length << " target " << target;
+      SCOPED_TRACE(testing::Message() << "length " << length << " target " << target);
+      const SimplifyReport r = simplify_open(open_below(spiky_sphere(30, 60, length, 0.25), 0.0), target, true, gap);
+      EXPECT_GT(r.tips, 0u);
+      EXPECT_LT(gap, 1e-6);
     }
+  }
+  for (const Index target : {Index(30), Index(80)}) {
+    SCOPED_TRACE("60 spikes, target " + std::to_string(target));
+    const SimplifyReport r = simplify_open(open_below(bristly_sphere(40, 60, 0.8, 0.1), 0.6), target, true, gap);
+    EXPECT_GT(r.chord_collapses, 0u);
+    EXPECT_LT(gap, 1e-6);
+  }
+}
+
+TEST(Simplify, a_chords_open_end_merges_on_the_border) {
+  // Spiky spheres open below a latitude, asked for a few quads: chord collapses end on
+  // the border, where the two border vertices of the chord's end merge into one. The
+  // border bends between them, so M0's point nearest their midpoint lies inside: a vertex
+  // left there was off the border for good (here by up to 0.4 input edges).
+  struct Run {
+    int spikes;
+    double length, half_angle, cut;
+    Index target;
+  };
+  for (const Run& run : {Run{60, 0.3, 0.35, 0.2, 8}, Run{60, 0.8, 0.2, 0.2, 15}, Run{12, 0.3, 0.2, 0.6, 8}}) {
+    SCOPED_TRACE(std::to_string(run.spikes) + " spikes, target " + std::to_string(run.target));
+    double gap;
+    const TriMesh t = open_below(bristly_sphere(40, run.spikes, run.length, run.half_angle), run.cut);
+    EXPECT_GT(simplify_open(t, run.target, false, gap).chord_collapses, 0u);
+    EXPECT_LT(gap, 1e-6);
   }
 }
 

@@ -107,6 +107,22 @@ bool Simplifier::border_merge_point(Index a, Index c, const Vec3& otherwise, Vec
   return true;
 }
 
+// The point of M0's border nearest p, on the stretch between border neighbours a and b
+// (a chord's open end). M0's point nearest p lies inside wherever the border bends
+// between them, and a border vertex left there no longer slides along the border: open
+// spiky spheres taken down to 8-40 quads kept border vertices up to an input edge off it.
+SurfacePoint Simplifier::border_point_between(Index a, Index b, const Vec3& p) const {
+  const Vec3 &pa = m_.position(a), &pb = m_.position(b);
+  ReferenceSurface::BorderArc arc{pa, pa, pa};  // from a, and not back past it
+  if (m_.next_on_border(a) == b)
+    arc.ahead = pb;
+  else if (m_.prev_on_border(a) == b)
+    arc.behind = pb;
+  else
+    return {};
+  return ref_.closest_on_border(foot_face_[a], p, 2 * (pb - pa).norm() + 4 * mu_, arc);
+}
+
 bool Simplifier::remove_border_vertex(Index b) {
   const Index out = m_.out(b), ha = m_.border_in(b);  // b -> c and a -> b, both on the border
   const Index a = m_.from(ha), c = m_.to(out);

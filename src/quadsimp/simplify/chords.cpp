@@ -78,10 +78,10 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
     }
   }
   // Each merged vertex: a border end keeps its place; two border ends (an open end of
-  // the chord) meet at a border corner if either is one, else at the point of M0
-  // closest to their midpoint (not through closest_on_border(), whose walk may start on
-  // the other border of a part one triangle wide: on a ribbon every chord was refused);
-  // otherwise the midpoint projected onto M0.
+  // the chord) meet at a border corner if either is one, else at the point of M0's
+  // border closest to their midpoint, walked from one to the other (a walk from the
+  // face nearest the midpoint may start on the other border of a part one triangle
+  // wide: on a ribbon every chord was refused); otherwise the midpoint projected onto M0.
   chord_pos_.resize(pairs);
   chord_feet_.resize(pairs);
   for (Index i = 0; i < pairs; ++i) {
@@ -104,7 +104,7 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
         ++rep_.refused_topology;
         return false;
       }
-      foot = ref_.closest_within(p, std::min((p - m_.position(l)).norm(), (p - m_.position(r)).norm()));
+      foot = p == mid ? border_point_between(l, r, mid) : ref_.closest_within(p, 0.0);
     } else {
       foot = ref_.project_near(foot_face_[l], mid, m_.vertex_area_normal(l) + m_.vertex_area_normal(r),
                                2 * (m_.position(l) - m_.position(r)).norm());
