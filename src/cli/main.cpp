@@ -85,8 +85,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   s->add_flag("--preserve-boundary", simp.params.preserve_boundary,
-              "keep the border exactly as it is (else border vertices slide along it, and move inwards by at most "
-              "one input edge where a ragged outline leaves a border edge over nothing)");
+              "keep the border exactly as it is (else border vertices slide along it, and move inwards by about "
+              "one input edge at most where a ragged outline leaves a border edge over nothing)");
   s->add_flag("--keep-tips", simp.params.keep_tips,
               "hold a vertex at each tip of the input (claws, a nose) that the smoothing would otherwise cut back "
               "(ours; quads capping a tip narrower than themselves count as folded)");

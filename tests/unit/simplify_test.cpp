@@ -405,7 +405,7 @@ TEST(Simplify, a_chords_open_end_merges_on_the_border) {
 TEST(Simplify, border_moves_inwards_where_a_ragged_outline_leaves_it_over_nothing) {
   // The border edges of the quads cut across the notches of a ragged outline, and rays
   // cast along the quads' normals there miss the input. Moving the border vertices
-  // inwards (by at most one input edge) must bring most of those points back over it,
+  // inwards (by about one input edge at most) must bring most of those points back over it,
   // and leave every interior vertex where it was.
   for (auto [seed, adaptive] : {std::pair{1u, false}, std::pair{2u, false}, std::pair{1u, true}}) {
     SCOPED_TRACE(std::to_string(seed) + (adaptive ? " adaptive" : " uniform"));
