@@ -57,12 +57,7 @@ void BM_Fitmaps1M(benchmark::State& state) {
 void BM_Tips1M(benchmark::State& state) {
   if (!std::ifstream(kBunny)) return state.SkipWithError("glmark2-data's bunny.obj is not installed");
   const qs::TriMesh& t = bunny_1m();
-  double area = 0;
-  for (const auto& f : t.faces) area += 0.5 * t.area_normal(f).norm();
-  const double quads = double(state.range(0));
-  qs::TipOptions o;  // as the loop sets them for a run to that many quads
-  o.radius = std::sqrt(area / quads);
-  o.max_tips = std::size_t(0.05 * quads) + 1;
+  const qs::TipOptions o = qs::tip_options_for(t, double(state.range(0)));  // as the loop sets them
   std::size_t found = 0;
   for (auto _ : state) found = qs::find_tips(t, o).size();
   state.counters["triangles"] = t.n_faces();

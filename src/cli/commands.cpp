@@ -5,8 +5,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "quadsimp/fitmap/fitmap.h"
+#include "quadsimp/fitmap/tips.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
 #include "quadsimp/mesh/clean.h"
@@ -170,10 +173,18 @@ int run_fitmap(const FitmapArgs& a) {
     fo.tau = a.tau;
     fo.progress = progress_bar(a.quiet);
     const Fitmaps f = compute_fitmaps(tri, fo);
-    write_tri_mesh_ply(a.output, tri, {{"fitmap_s", f.s}, {"fitmap_m", f.m}});
+    std::vector<VertexField> fields = {{"fitmap_s", f.s}, {"fitmap_m", f.m}};
+    std::string tips;
+    if (a.tips_for > 0) {
+      const std::vector<Index> found = find_tips(tri, tip_options_for(tri, a.tips_for));
+      fields.push_back({"tip", std::vector<float>(tri.n_vertices(), 0.f)});
+      for (Index v : found) fields.back().values[v] = 1.f;
+      tips = ", tip; " + std::to_string(found.size()) + " tips at " + std::to_string(a.tips_for) + " quads";
+    }
+    write_tri_mesh_ply(a.output, tri, fields);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("%s: S and M fitmaps of %u vertices written to %s (per-vertex fitmap_s, fitmap_m; colour = S), %.2f s\n",
-                a.input.c_str(), tri.n_vertices(), a.output.c_str(), s);
+    std::printf("%s: S and M fitmaps of %u vertices written to %s (per-vertex fitmap_s, fitmap_m%s; colour = S), %.2f s\n",
+                a.input.c_str(), tri.n_vertices(), a.output.c_str(), tips.c_str(), s);
     return kOk;
   } catch (const InvalidInput& e) {
     std::cerr << "quadsimp fitmap: " << e.what() << "\n";

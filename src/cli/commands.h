@@ -27,6 +27,7 @@ int run_simplify(const SimplifyArgs& args);
 struct FitmapArgs {
   std::string input, output;
   double tau = FitmapOptions().tau;
+  unsigned tips_for = 0;  // also the tips --keep-tips holds at this many quads (0: none)
   bool quiet = false;
 };
 int run_fitmap(const FitmapArgs& args);

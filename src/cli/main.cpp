@@ -106,6 +106,10 @@ int main(int argc, char** argv) {
   fm->add_option("IN", fit.input, "input mesh")->required()->check(CLI::ExistingFile);
   fm->add_option("OUT", fit.output, "output .ply (fitmap_s, fitmap_m per vertex; S as colour)")->required();
   fm->add_option("--tau", fit.tau, "M-fitmap tolerance (share of inconsistent area)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  fm->add_option("--tips", fit.tips_for,
+                 "also mark the tips that simplify's --keep-tips holds at N quads (per-vertex tip: 1 at each)")
+      ->type_name("N")
+      ->check(whole_number_from_one());
   fm->add_flag("-q,--quiet", fit.quiet, "no progress bar and no notes");
 
   StatsArgs stats;

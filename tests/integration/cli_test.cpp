@@ -7,7 +7,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <cstring>
 #include <map>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +36,38 @@ CliRun run(const std::string& args) {
   const int status = ::pclose(p);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+// One per-vertex property of a binary little-endian PLY file, as floats (empty if the
+// file has no such property): the fields `quadsimp fitmap` writes.
+std::vector<float> ply_vertex_property(const std::string& path, const std::string& name) {
+  std::ifstream in(path, std::ios::binary);
+  const std::map<std::string, int> sizes = {{"char", 1}, {"uchar", 1}, {"short", 2}, {"ushort", 2},
+                                            {"int", 4},  {"uint", 4},  {"float", 4}, {"double", 8}};
+  std::size_t count = 0, stride = 0, offset = 0;
+  std::string line, type, found_type;
+  bool in_vertex = false;
+  while (std::getline(in, line) && line != "end_header") {
+    std::istringstream words(line);
+    std::string word, element;
+    words >> word;
+    if (word == "element") {
+      words >> element;
+      in_vertex = element == "vertex";
+      if (in_vertex) words >> count;
+    } else if (word == "property" && in_vertex) {
+      std::string property;
+      words >> type >> property;
+      if (property == name) offset = stride, found_type = type;
+      stride += sizes.at(type);
+    }
+  }
+  if (found_type != "float") return {};
+  std::vector<char> data(count * stride);
+  in.read(data.data(), std::streamsize(data.size()));
+  std::vector<float> values(count);
+  for (std::size_t i = 0; i < count; ++i) std::memcpy(&values[i], &data[i * stride + offset], sizeof(float));
+  return values;
 }
 
 class Cli : public ::testing::Test {
@@ -337,6 +371,31 @@ TEST_F(Cli, keep_tips_holds_a_vertex_on_each_spike) {
                         [&](const Vec3& x) { return (x - a).norm() < 1e-6; });
     EXPECT_EQ(on, keep ? 3 : 0) << "keep " << keep;
   }
+}
+
+TEST_F(Cli, fitmap_marks_the_tips_keep_tips_holds) {
+  // The same spiky sphere: `fitmap --tips 100` marks its three apexes (per-vertex `tip`),
+  // which simplify's --keep-tips holds at 100 quads, and nothing else.
+  const TriMesh spiky = fixtures::spiky_sphere(30, 60, 1.0, 0.25);
+  write_tri_mesh_ply(p("spiky.ply"), spiky);
+  CliRun r = run("fitmap " + p("spiky.ply") + " " + p("f.ply") + " --tips 100 -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("fitmap_s, fitmap_m, tip; 3 tips at 100 quads"), std::string::npos) << r.out;
+  const std::vector<float> tip = ply_vertex_property(p("f.ply"), "tip");
+  ASSERT_EQ(tip.size(), spiky.positions.size());
+  std::vector<Vec3> marked;
+  for (std::size_t v = 0; v < tip.size(); ++v)
+    if (tip[v] != 0.f) marked.push_back(spiky.positions[v]);
+  ASSERT_EQ(marked.size(), 3u);
+  for (const Vec3& apex : {Vec3(0, 0, 2), Vec3(0, 0, -2), Vec3(2, 0, 0)})
+    EXPECT_TRUE(std::any_of(marked.begin(), marked.end(), [&](const Vec3& x) { return (x - apex).norm() < 1e-6; }))
+        << apex.transpose();
+  EXPECT_EQ(ply_vertex_property(p("f.ply"), "fitmap_s").size(), spiky.positions.size());
+  // Without --tips: no such property.
+  r = run("fitmap " + p("spiky.ply") + " " + p("g.ply") + " -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(ply_vertex_property(p("g.ply"), "tip").empty());
+  EXPECT_EQ(run("fitmap " + p("spiky.ply") + " " + p("g.ply") + " --tips 0").code, 2);
 }
 
 TEST_F(Cli, a_fin_on_an_edge_is_removed_and_reported) {

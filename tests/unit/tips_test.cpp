@@ -156,10 +156,7 @@ TEST(Simplify, kept_tips_hold_a_vertex_on_each_of_the_armadillos_claws) {
       p.adaptive = adaptive;
       p.keep_tips = keep;
       const SimplifyReport r = simplify_input(in, ref, p);
-      TipOptions o;  // as the loop finds them
-      o.radius = std::sqrt(ref.area() / kFaces);
-      o.max_tips = kFaces / 20 + 1;
-      const std::vector<Index> tips = find_tips(ref.mesh(), o);
+      const std::vector<Index> tips = find_tips(ref.mesh(), tip_options_for(ref.mesh(), kFaces));  // as the loop
       ASSERT_GE(tips.size(), 10u);
       for (Index t : tips) lost[keep] = std::max(lost[keep], distance_to_quads(in.quads, ref.mesh().positions[t]));
       if (!keep) continue;

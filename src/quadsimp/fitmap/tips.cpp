@@ -80,4 +80,13 @@ std::vector<Index> find_tips(const TriMesh& t, const TipOptions& o) {
   return tips;
 }
 
+TipOptions tip_options_for(const TriMesh& mesh, double quads) {
+  double area = 0;  // summed as ReferenceSurface::area() sums it, to the last bit
+  for (const auto& f : mesh.faces) area += 0.5 * mesh.area_normal(f).norm();
+  TipOptions o;
+  o.radius = std::sqrt(area / quads);
+  o.max_tips = std::size_t(0.05 * quads) + 1;
+  return o;
+}
+
 }  // namespace qs

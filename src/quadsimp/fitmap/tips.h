@@ -22,6 +22,11 @@ struct TipOptions {
   std::size_t max_tips = 0;  //!< the steepest ones kept (0: all)
 };
 
+//! The options `--keep-tips` takes for a result of about `quads` quads on `mesh`: the
+//! radius is the side of `quads` squares covering it, and at most 5% of `quads` tips (and
+//! one): tips are few, and every held vertex stiffens the quads.
+TipOptions tip_options_for(const TriMesh& mesh, double quads);
+
 //! The tips of a clean triangle mesh: interior vertices whose neighbourhood (the part of
 //! the ball of `radius` connected to them through edges inside it) lies entirely below them
 //! along their normal, within a tenth of the radius, and falls away at `min_slope` all

@@ -463,11 +463,7 @@ void Simplifier::hold_tips() {
   held_.assign(m_.vertex_capacity(), 0);
   const double count = opt_.target_faces > 0 ? double(opt_.target_faces) : rep_.predicted_faces;
   if (!opt_.keep_tips || !(count > 0)) return;
-  constexpr double kMostTips = 0.05;  // of the count: tips are few, and every held vertex stiffens the mesh
-  TipOptions to;
-  to.radius = std::sqrt(ref_.area() / count);  // the side of `count` squares covering M0
-  to.max_tips = std::size_t(kMostTips * count) + 1;
-  const std::vector<Index> tips = find_tips(ref_.mesh(), to);
+  const std::vector<Index> tips = find_tips(ref_.mesh(), tip_options_for(ref_.mesh(), count));
   if (tips.empty()) return;
   const TriMesh& t = ref_.mesh();
   for (Index v = 0; v < m_.vertex_capacity(); ++v) {
