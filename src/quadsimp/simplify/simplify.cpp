@@ -631,10 +631,13 @@ SimplifyReport Simplifier::run() {
   for (std::size_t c = 0; c < share_.size(); ++c)
     if (double(piece_faces_[c]) > share_[c]) ++rep_.pieces_above_share, rep_.faces_above_share += piece_faces_[c];
   if (opt_.adaptive && !halted) rep_.blocked_share = blocked_share();
-  if (has_border_ && opt_.inset_border && !opt_.preserve_boundary && !rep_.cancelled) inset_border();
-  if (opt_.adaptive) rep_.beyond_reach = count_beyond_reach();
   rep_.ran_out = measure && !halted && !rep_.cancelled;
   if (opt_.unfold && !opt_.refuse_folds && !rep_.cancelled) unfold();
+  // Last: the unfolding smooths, and a border vertex the inset has moved off M0's border
+  // no longer slides along it. When the inset came first, bunny.ply with 0.1% of its
+  // triangles taken out, stopping at 295 quads, ended with one 8.4 input edges off it.
+  if (has_border_ && opt_.inset_border && !opt_.preserve_boundary && !rep_.cancelled) inset_border();
+  if (opt_.adaptive) rep_.beyond_reach = count_beyond_reach();
   if (opt_.check_invariants) check_invariants();
   for (Index v = 0; v < m_.vertex_capacity(); ++v) rep_.tips += m_.is_vertex_live(v) && held_[v];
   m_.compact();
