@@ -84,3 +84,29 @@ TEST(VertexRings, neighbours_once_each_in_order_and_the_border_marked) {
   const VertexRings s = vertex_rings(tri_sphere(6, 8));
   EXPECT_EQ(std::count(s.border.begin(), s.border.end(), 1), 0);
 }
+
+TEST(SurfaceArea, and_vertex_area_normals_of_a_cube_and_a_square) {
+  TriMesh cube = fixtures::tri_cube(4);
+  clean(cube);  // welds the sides along the edges
+  EXPECT_NEAR(surface_area(cube), 6.0, 1e-12);
+  const std::vector<Vec3> normals = vertex_area_normals(cube);
+  ASSERT_EQ(normals.size(), cube.n_vertices());
+  Vec3 sum = Vec3::Zero();
+  for (Index v = 0; v < cube.n_vertices(); ++v) {
+    // The outward normals of the sides the vertex lies on: inside a side its normal is
+    // that side's exactly; on an edge or at a corner it lies between them.
+    const Vec3 d = cube.positions[v] - Vec3(0.5, 0.5, 0.5);
+    const Vec3 out = d.cwiseSign().cwiseProduct((d.cwiseAbs().array() > 0.5 - 1e-9).matrix().cast<double>());
+    const double cos = normals[v].normalized().dot(out.normalized());
+    EXPECT_GT(cos, out.cwiseAbs().sum() == 1 ? 1 - 1e-12 : 0.5) << cube.positions[v].transpose();
+    sum += normals[v];
+  }
+  EXPECT_LT(sum.norm(), 1e-12);  // each triangle's area normal three times: none on a closed surface
+  // On a flat square each vertex normal is twice the area of its triangles, which count
+  // at their three corners.
+  const TriMesh square = fixtures::tri_grid(10, 10);
+  double length = 0;
+  for (const Vec3& n : vertex_area_normals(square)) length += n.norm();
+  EXPECT_NEAR(surface_area(square), 1.0, 1e-12);
+  EXPECT_NEAR(length, 6.0, 1e-12);
+}

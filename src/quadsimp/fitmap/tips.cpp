@@ -21,11 +21,7 @@ std::vector<Index> find_tips(const TriMesh& t, const TipOptions& o) {
   const Index nv = t.n_vertices();
   if (nv == 0 || !(o.radius > 0)) return {};
   const VertexRings rings = vertex_rings(t);
-  std::vector<Vec3> normal(nv, Vec3::Zero());
-  for (const auto& f : t.faces) {
-    const Vec3 n = t.area_normal(f);
-    for (Index v : f) normal[v] += n;
-  }
+  const std::vector<Vec3> normal = vertex_area_normals(t);
   const double r = o.radius, near = 0.7 * r, rise = 0.1 * r;
   std::vector<double> slope(nv, -1);  // the least fall at the rim; -1: not a tip
   tbb::enumerable_thread_specific<Scratch> scratch;
@@ -81,10 +77,8 @@ std::vector<Index> find_tips(const TriMesh& t, const TipOptions& o) {
 }
 
 TipOptions tip_options_for(const TriMesh& mesh, double quads) {
-  double area = 0;  // summed as ReferenceSurface::area() sums it, to the last bit
-  for (const auto& f : mesh.faces) area += 0.5 * mesh.area_normal(f).norm();
   TipOptions o;
-  o.radius = std::sqrt(area / quads);
+  o.radius = std::sqrt(surface_area(mesh) / quads);
   o.max_tips = std::size_t(0.05 * quads) + 1;
   return o;
 }

@@ -125,6 +125,21 @@ void sort_spatially(TriMesh& m) {
 
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& t) { return adjacency_from(t, corners_around(t)); }
 
+double surface_area(const TriMesh& t) {
+  double area = 0;
+  for (const auto& f : t.faces) area += 0.5 * t.area_normal(f).norm();
+  return area;
+}
+
+std::vector<Vec3> vertex_area_normals(const TriMesh& t) {
+  std::vector<Vec3> normals(t.n_vertices(), Vec3::Zero());
+  for (const auto& f : t.faces) {
+    const Vec3 n = t.area_normal(f);
+    for (Index v : f) normals[v] += n;
+  }
+  return normals;
+}
+
 VertexRings vertex_rings(const TriMesh& t) {
   const Index nv = t.n_vertices();
   VertexRings r;

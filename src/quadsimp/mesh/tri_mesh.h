@@ -73,6 +73,12 @@ std::pair<Vec3, Vec3> used_bbox(const TriMesh& mesh);
 //! cancel every digit), else the origin itself, where a shift would only change rounding.
 Vec3 working_origin(const std::vector<Vec3>& positions);
 
+//! The sum of the triangles' areas, in their order (ReferenceSurface::area() is this).
+double surface_area(const TriMesh& mesh);
+//! Each vertex's area-weighted normal, not normalised: the sum of its triangles' area
+//! normals, in their order (ReferenceSurface's vertex normals are these, normalised).
+std::vector<Vec3> vertex_area_normals(const TriMesh& mesh);
+
 //! Neighbour triangle across edge k (corner k to k+1) of each triangle; kNone on the
 //! border. \pre edge-manifold (see clean()).
 std::vector<std::array<Index, 3>> triangle_adjacency(const TriMesh& mesh);

@@ -119,18 +119,14 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   const auto& P = mesh_.positions;
   diagonal_ = qs::bbox_diagonal(P);
   normals_.resize(mesh_.n_faces());
-  vertex_normals_.assign(mesh_.n_vertices(), Vec3::Zero());
   double edge_sum = 0;
   for (Index f = 0; f < mesh_.n_faces(); ++f) {
     const auto& t = mesh_.faces[f];
-    const Vec3 n = mesh_.area_normal(t);
-    normals_[f] = n.normalized();
-    area_ += 0.5 * n.norm();
-    for (int k = 0; k < 3; ++k) {
-      vertex_normals_[t[k]] += n;
-      edge_sum += (P[t[k]] - P[t[(k + 1) % 3]]).norm();
-    }
+    normals_[f] = mesh_.area_normal(t).normalized();
+    for (int k = 0; k < 3; ++k) edge_sum += (P[t[k]] - P[t[(k + 1) % 3]]).norm();
   }
+  area_ = surface_area(mesh_);
+  vertex_normals_ = vertex_area_normals(mesh_);
   for (Vec3& n : vertex_normals_) n.normalize();
   mean_edge_ = mesh_.n_faces() ? edge_sum / (3.0 * mesh_.n_faces()) : 0.0;
   adjacency_ = triangle_adjacency(mesh_);
