@@ -104,6 +104,7 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
         ++rep_.refused_topology;
         return false;
       }
+      // p is a corner's own place, or the midpoint, to be brought onto M0's border.
       foot = p == mid ? border_point_between(l, r, mid) : ref_.closest_within(p, 0.0);
     } else {
       foot = ref_.project_near(foot_face_[l], mid, m_.vertex_area_normal(l) + m_.vertex_area_normal(r),
