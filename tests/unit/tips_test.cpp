@@ -105,6 +105,19 @@ TEST(Tips, a_tip_needs_the_surface_closed_around_it) {
   EXPECT_EQ(tips_of(t, 1.3).size(), 1u);
 }
 
+TEST(Tips, a_cubes_eight_corners_whatever_their_triangles) {
+  // At the scale of 150 quads each corner of a cube is a tip (its sides fall away from
+  // it at a slope of 0.58), however its sides are split into triangles.
+  TriMesh cube = tri_cube(20);
+  clean(cube);
+  const std::vector<Index> tips = find_tips(cube, tip_options_for(cube, 150));
+  ASSERT_EQ(tips.size(), 8u);
+  for (Index v : tips) {
+    const Vec3 d = cube.positions[v] - Vec3(0.5, 0.5, 0.5);
+    EXPECT_EQ(d.cwiseAbs(), Vec3(0.5, 0.5, 0.5)) << cube.positions[v].transpose();
+  }
+}
+
 TEST(Simplify, kept_tips_stay_at_the_apexes_in_both_modes) {
   // Uniform mode at 100 quads also leaves an apex's vertex with three edges, which losing
   // one more would make a doublet for the cleaning to remove.

@@ -110,3 +110,21 @@ TEST(SurfaceArea, and_vertex_area_normals_of_a_cube_and_a_square) {
   EXPECT_NEAR(surface_area(square), 1.0, 1e-12);
   EXPECT_NEAR(length, 6.0, 1e-12);
 }
+
+TEST(VertexAngleNormals, a_cubes_corners_point_along_its_diagonals_however_split) {
+  // tri_cube's sides are split along alternating diagonals, so its corners have one or
+  // two triangles on each side: area weights tilt their normals, angle weights do not.
+  TriMesh cube = fixtures::tri_cube(4);
+  clean(cube);
+  const std::vector<Vec3> normals = vertex_angle_normals(cube);
+  int corners = 0;
+  for (Index v = 0; v < cube.n_vertices(); ++v) {
+    const Vec3 d = cube.positions[v] - Vec3(0.5, 0.5, 0.5);
+    const Vec3 out = d.cwiseSign().cwiseProduct((d.cwiseAbs().array() > 0.5 - 1e-9).matrix().cast<double>());
+    if (out.cwiseAbs().sum() != 3) continue;
+    ++corners;
+    EXPECT_NEAR(normals[v].dot(out.normalized()), 1.0, 1e-12) << cube.positions[v].transpose();
+  }
+  EXPECT_EQ(corners, 8);
+  for (const Vec3& n : vertex_angle_normals(fixtures::tri_grid(10, 10))) EXPECT_NEAR(n.z(), 1.0, 1e-12);
+}

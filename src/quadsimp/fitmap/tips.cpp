@@ -21,7 +21,9 @@ std::vector<Index> find_tips(const TriMesh& t, const TipOptions& o) {
   const Index nv = t.n_vertices();
   if (nv == 0 || !(o.radius > 0)) return {};
   const VertexRings rings = vertex_rings(t);
-  const std::vector<Vec3> normal = vertex_area_normals(t);
+  // Angle-weighted: with area weights a cube's corner was a tip or not depending on how its
+  // sides were split (2 of the 8 corners of tri_cube(20) at the scale of 150 quads).
+  const std::vector<Vec3> normal = vertex_angle_normals(t);
   const double r = o.radius, near = 0.7 * r, rise = 0.1 * r;
   std::vector<double> slope(nv, -1);  // the least fall at the rim; -1: not a tip
   tbb::enumerable_thread_specific<Scratch> scratch;
@@ -30,7 +32,7 @@ std::vector<Index> find_tips(const TriMesh& t, const TipOptions& o) {
     Scratch& s = scratch.local();
     if (s.mark.size() != nv) s.mark.assign(nv, 0), s.stamp = 0;
     const Index stamp = ++s.stamp;
-    const Vec3 p = t.positions[v], n = normal[v].normalized();
+    const Vec3 p = t.positions[v], n = normal[v];
     s.queue.assign(1, v);
     s.mark[v] = stamp;
     double least = 1;

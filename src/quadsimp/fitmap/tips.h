@@ -28,11 +28,13 @@ struct TipOptions {
 TipOptions tip_options_for(const TriMesh& mesh, double quads);
 
 //! The tips of a clean triangle mesh: interior vertices whose neighbourhood (the part of
-//! the ball of `radius` connected to them through edges inside it) lies entirely below them
-//! along their normal, within a tenth of the radius, and falls away at `min_slope` all
-//! round at its rim (its vertices from 0.7 radius out, and the first ones past it); of
-//! tips nearer each other than the radius, the steepest only. Sorted by vertex index. Ridges (a wing's edge) and flat or saddle-shaped places are not tips:
-//! along a ridge the surface does not fall away. In parallel (TBB); deterministic.
+//! the ball of `radius` connected to them through edges inside it) lies entirely below
+//! them along their angle-weighted normal, within a tenth of the radius, and falls away at
+//! `min_slope` all round at its rim (its vertices from 0.7 radius out, and the first ones
+//! past it); of tips nearer each other than the radius, the steepest only. Sorted by vertex
+//! index. Ridges (a wing's edge) and flat or saddle-shaped places are not tips: along a
+//! ridge the surface does not fall away. A solid's corner is one where its sides fall away
+//! steeply enough (a cube's at 0.58). In parallel (TBB); deterministic.
 std::vector<Index> find_tips(const TriMesh& mesh, const TipOptions& options);
 
 }  // namespace qs

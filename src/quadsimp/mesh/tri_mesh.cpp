@@ -2,6 +2,7 @@
 #include "quadsimp/mesh/tri_mesh.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -137,6 +138,21 @@ std::vector<Vec3> vertex_area_normals(const TriMesh& t) {
     const Vec3 n = t.area_normal(f);
     for (Index v : f) normals[v] += n;
   }
+  return normals;
+}
+
+std::vector<Vec3> vertex_angle_normals(const TriMesh& t) {
+  std::vector<Vec3> normals(t.n_vertices(), Vec3::Zero());
+  for (const auto& f : t.faces) {
+    const Vec3 n = t.area_normal(f);
+    if (!(n.squaredNorm() > 0)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = t.positions[f[(k + 1) % 3]] - t.positions[f[k]], b = t.positions[f[(k + 2) % 3]] - t.positions[f[k]];
+      normals[f[k]] += std::atan2(a.cross(b).norm(), a.dot(b)) * n.normalized();
+    }
+  }
+  for (Vec3& n : normals)
+    if (n.squaredNorm() > 0) n.normalize();
   return normals;
 }
 

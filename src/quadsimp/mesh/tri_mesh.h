@@ -78,6 +78,11 @@ double surface_area(const TriMesh& mesh);
 //! Each vertex's area-weighted normal, not normalised: the sum of its triangles' area
 //! normals, in their order (ReferenceSurface's vertex normals are these, normalised).
 std::vector<Vec3> vertex_area_normals(const TriMesh& mesh);
+//! Each vertex's angle-weighted unit normal: its triangles' unit normals weighted by their
+//! angles at it, which does not depend on how the surface around it is split into
+//! triangles (a cube's corner: along the diagonal however its three sides are split).
+//! Zero where the vertex has no triangle of any area.
+std::vector<Vec3> vertex_angle_normals(const TriMesh& mesh);
 
 //! Neighbour triangle across edge k (corner k to k+1) of each triangle; kNone on the
 //! border. \pre edge-manifold (see clean()).
