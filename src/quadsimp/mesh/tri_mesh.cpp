@@ -147,7 +147,8 @@ std::vector<Vec3> vertex_angle_normals(const TriMesh& t) {
     const Vec3 n = t.area_normal(f);
     if (!(n.squaredNorm() > 0)) continue;
     for (int k = 0; k < 3; ++k) {
-      const Vec3 a = t.positions[f[(k + 1) % 3]] - t.positions[f[k]], b = t.positions[f[(k + 2) % 3]] - t.positions[f[k]];
+      const Vec3& p = t.positions[f[k]];
+      const Vec3 a = t.positions[f[(k + 1) % 3]] - p, b = t.positions[f[(k + 2) % 3]] - p;
       normals[f[k]] += std::atan2(a.cross(b).norm(), a.dot(b)) * n.normalized();
     }
   }

@@ -111,6 +111,7 @@ class Simplifier {
   void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
   void after_change(const Index* first, const Index* last);
   void check_invariants() const;  // SimplifyOptions::check_invariants
+  void check_piece_counts() const;
   void add_faces_around(Index v, std::vector<Index>& faces);
   void requeue_region();
   double blocked_share();
