@@ -170,7 +170,8 @@ struct SimplifyOptions {
   //! above the target (a thin tube at 426 quads for a target of 50).
   bool chord_collapses = true;
   //! For tests: after every change the loop makes, and after unfolding, validate() the
-  //! mesh, check that no two quads share a diagonal, and check the loop's own bookkeeping
+  //! mesh, check that no two quads share a diagonal, that every border vertex lies on
+  //! M0's border (until the inset moves some inwards), and the loop's own bookkeeping
   //! (every border vertex is a candidate of border coarsening); throws std::logic_error
   //! naming what broke. Linear in the mesh per change: small meshes only.
   bool check_invariants = false;
