@@ -111,7 +111,7 @@ class Simplifier {
   void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
   void after_change(const Index* first, const Index* last);
   void check_invariants() const;  // SimplifyOptions::check_invariants
-  void check_piece_counts() const;
+  void check_border_on_m0() const;
   void add_faces_around(Index v, std::vector<Index>& faces);
   void requeue_region();
   double blocked_share();
@@ -265,6 +265,7 @@ class Simplifier {
   // bunny.ply split to 1.1M triangles.
   std::vector<Index> border_candidates_;
   std::vector<char> border_noted_;
+  std::vector<std::pair<Vec3, Vec3>> m0_border_;  // check_invariants: M0's border edges (start, start to end)
   void note_border(Index v) {
     if (!border_noted_[v] && m_.is_vertex_live(v) && m_.is_border_vertex(v))
       border_noted_[v] = 1, border_candidates_.push_back(v);

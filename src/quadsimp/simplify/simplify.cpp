@@ -450,39 +450,30 @@ void Simplifier::check_invariants() const {
   for (Index v = 0; v < m_.vertex_capacity(); ++v)
     if (m_.is_vertex_live(v) && m_.is_border_vertex(v) && !border_noted_[v])
       throw std::logic_error("simplify: border vertex " + std::to_string(v) + " is not a border-coarsening candidate");
-  // Border vertices lie on M0's border until the inset at the end moves some inwards on
-  // purpose: one left off it no longer slides along the border (a chord's open end once
-  // did that). Every border edge of M0 is tried: the check must not lean on the walk
-  // along the border it guards.
-  if (rep_.border_insets > 0) return check_piece_counts();
-  const TriMesh& t = ref_.mesh();
-  std::vector<std::pair<Vec3, Vec3>> border;  // M0's border edges: start, and start to end
-  for (Index f = 0; f < t.n_faces(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (ref_.adjacency()[f][k] == kNone) {
-        const Vec3& a = t.positions[t.faces[f][k]];
-        border.emplace_back(a, t.positions[t.faces[f][(k + 1) % 3]] - a);
-      }
+  // The inset at the end moves border vertices inwards on purpose.
+  if (rep_.border_insets == 0) check_border_on_m0();
+  if (share_.empty()) return;
+  std::vector<Index> faces(share_.size(), 0);
+  for (Index f = 0; f < m_.face_capacity(); ++f)
+    if (m_.is_face_live(f)) ++faces[component_[m_.vertex(f, 0)]];
+  if (faces != piece_faces_) throw std::logic_error("simplify: the pieces' face counts are off");
+}
+
+// Border vertices lie on M0's border: one left off it no longer slides along the border
+// (a chord's open end once did that). Every border edge of M0 is tried: the check must
+// not lean on the walk along the border it guards.
+void Simplifier::check_border_on_m0() const {
   for (Index v = 0; v < m_.vertex_capacity(); ++v) {
     if (!m_.is_vertex_live(v) || !m_.is_border_vertex(v)) continue;
     const Vec3& p = m_.position(v);
     double gap = std::numeric_limits<double>::infinity();
-    for (const auto& [a, ab] : border)
+    for (const auto& [a, ab] : m0_border_)
       gap = std::min(gap, (a + std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) * ab - p).norm());
     if (!(gap <= 1e-4 * ref_.mean_edge_length()))  // rounding: up to 1e-6 edges seen
       throw std::logic_error("simplify: border vertex " + std::to_string(v) + " is off M0's border by " +
                              std::to_string(gap / ref_.mean_edge_length()) + " input edges, at " +
                              std::to_string(m_.n_faces()) + " quads");
   }
-  check_piece_counts();
-}
-
-void Simplifier::check_piece_counts() const {
-  if (share_.empty()) return;
-  std::vector<Index> faces(share_.size(), 0);
-  for (Index f = 0; f < m_.face_capacity(); ++f)
-    if (m_.is_face_live(f)) ++faces[component_[m_.vertex(f, 0)]];
-  if (faces != piece_faces_) throw std::logic_error("simplify: the pieces' face counts are off");
 }
 
 // SimplifyOptions::keep_tips. The mesh's vertices are M0's own at the start (the
@@ -542,6 +533,15 @@ SimplifyReport Simplifier::run() {
       if (s.found()) record_foot(v, s);
     }
   hold_tips();
+  if (opt_.check_invariants) {  // M0's border edges, for check_border_on_m0()
+    const TriMesh& t = ref_.mesh();
+    for (Index f = 0; f < t.n_faces(); ++f)
+      for (int k = 0; k < 3; ++k)
+        if (ref_.adjacency()[f][k] == kNone) {
+          const Vec3& a = t.positions[t.faces[f][k]];
+          m0_border_.emplace_back(a, t.positions[t.faces[f][(k + 1) % 3]] - a);
+        }
+  }
   border_noted_.assign(m_.vertex_capacity(), 0);
   for (Index v = 0; v < m_.vertex_capacity(); ++v) note_border(v);
   has_border_ = !border_candidates_.empty();
