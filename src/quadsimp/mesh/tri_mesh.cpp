@@ -144,12 +144,13 @@ std::vector<Vec3> vertex_area_normals(const TriMesh& t) {
 std::vector<Vec3> vertex_angle_normals(const TriMesh& t) {
   std::vector<Vec3> normals(t.n_vertices(), Vec3::Zero());
   for (const auto& f : t.faces) {
-    const Vec3 n = t.area_normal(f);
-    if (!(n.squaredNorm() > 0)) continue;
+    const Vec3 area_normal = t.area_normal(f);
+    if (!(area_normal.squaredNorm() > 0)) continue;
+    const Vec3 n = area_normal.normalized();
     for (int k = 0; k < 3; ++k) {
       const Vec3& p = t.positions[f[k]];
       const Vec3 a = t.positions[f[(k + 1) % 3]] - p, b = t.positions[f[(k + 2) % 3]] - p;
-      normals[f[k]] += std::atan2(a.cross(b).norm(), a.dot(b)) * n.normalized();
+      normals[f[k]] += std::atan2(a.cross(b).norm(), a.dot(b)) * n;
     }
   }
   for (Vec3& n : normals)
@@ -187,7 +188,6 @@ VertexRings vertex_rings(const TriMesh& t) {
   r.start[nv] = Index(r.next.size());
   return r;
 }
-
 
 std::pair<Vec3, Vec3> used_bbox(const TriMesh& m) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
