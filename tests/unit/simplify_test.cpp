@@ -70,15 +70,6 @@ TriMesh without_faces(TriMesh t, Drop&& drop) {
   return t;
 }
 
-// t without the triangles lying wholly below the height z (or at it).
-TriMesh open_below(TriMesh t, double z) {
-  std::vector<std::array<Index, 3>> kept;
-  for (const auto& f : t.faces)
-    if (std::max({t.positions[f[0]].z(), t.positions[f[1]].z(), t.positions[f[2]].z()}) > z) kept.push_back(f);
-  t.faces = std::move(kept);
-  return t;
-}
-
 // A flat n x n grid whose left and right sides are ragged, like a range scan's outline:
 // each row loses 0 to `deepest` cells (drawn) at either end.
 TriMesh ragged_grid(int n, unsigned seed, int deepest = 1) {

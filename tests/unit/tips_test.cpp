@@ -92,13 +92,7 @@ TEST(Tips, smooth_ridged_and_saddle_shapes_have_none) {
 TEST(Tips, a_tip_needs_the_surface_closed_around_it) {
   // The spiky sphere without its lower part: the border at z = -0.5 is 1.24 from the +x
   // apex, 2.5 from the +z one.
-  TriMesh t = spiky();
-  t.faces.erase(std::remove_if(t.faces.begin(), t.faces.end(),
-                               [&](const auto& f) {
-                                 return std::max({t.positions[f[0]].z(), t.positions[f[1]].z(),
-                                                  t.positions[f[2]].z()}) < -0.5;
-                               }),
-                t.faces.end());
+  TriMesh t = open_below(spiky(), -0.5);
   clean(t);
   EXPECT_EQ(tips_of(t, 0.3).size(), 2u);
   EXPECT_EQ(tips_of(t, 1.1).size(), 2u);
