@@ -1209,6 +1209,29 @@ TEST(ReferenceSurface, closest_on_border_stays_within_its_arc) {
   EXPECT_LT((ref.closest_on_border(start, Vec3(0.5, 0.01, 0), 0.2, wide).point - wide.ahead).norm(), 1e-12);
 }
 
+TEST(ReferenceSurface, closest_on_border_takes_points_rounded_off_the_border) {
+  // closest() searches from a float copy of its point, so a border vertex lies off the
+  // border by up to about 1e-7 of the diagonal (here 4e-6 input edges). Its arc must
+  // still start and end where it does: matched within 1e-9 input edges, the walk started
+  // on another edge of the triangle and slid past the arc's ends.
+  TriMesh t = tri_grid(40, 40);
+  clean(t);
+  const ReferenceSurface ref(t);
+  const Vec3 off(0, 1e-7, 1e-7);  // inside the grid and above it
+  for (const Vec3& corner : {Vec3(0.05, 0, 0), Vec3(0.075, 0, 0)}) {
+    Index start = kNone;  // a triangle with a corner there
+    for (Index f = 0; f < ref.mesh().n_faces() && start == kNone; ++f)
+      for (Index v : ref.mesh().faces[f])
+        if ((ref.mesh().positions[v] - corner).norm() < 1e-12) start = f;
+    ASSERT_NE(start, kNone);
+    const ReferenceSurface::BorderArc arc{Vec3(0.0625, 0, 0) + off, Vec3(0.07, 0, 0) + off, Vec3(0.035, 0, 0) + off};
+    const Vec3 past_corner(-0.01, 0.03, 0);
+    EXPECT_LT((ref.closest_on_border(start, past_corner, 0.2, arc).point - Vec3(0.035, 0, 0)).norm(), 1e-6);
+    EXPECT_LT((ref.closest_on_border(start, Vec3(0.5, 0.01, 0), 0.2, arc).point - Vec3(0.07, 0, 0)).norm(), 1e-6);
+    EXPECT_LT((ref.closest_on_border(start, Vec3(0.04, 0.01, 0), 0.2, arc).point - Vec3(0.04, 0, 0)).norm(), 1e-12);
+  }
+}
+
 TEST(Simplify, a_strip_one_quad_wide_shortens_by_chord_collapses) {
   // 60 square quads in a row, bent: no diagonal collapse can thin it without a pinch.
   TriMesh t = tri_grid(60, 1);

@@ -299,17 +299,23 @@ SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, dou
     return len2 > 0 ? std::clamp((x - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
   };
   auto point_at = [&](Index e, double s) { return Vec3(P[corner(e, 0)] + s * (P[corner(e, 1)] - P[corner(e, 0)])); };
-  const double on_edge = 1e-9 * mean_edge_;
-  auto where_on = [&](Index e, const Vec3& x) {
-    const double s = nearest(e, x);
-    return (point_at(e, s) - x).norm() <= on_edge ? s : -1.0;
-  };
-  // The walk starts at the border edge under arc.from, or at any border edge at a
-  // corner of `start`.
+  // Points placed on the border lie off it by Embree's rounding (closest() searches from a
+  // float copy of the point: up to about 1e-7 of the diagonal). Matched within 1e-9 input
+  // edges, such an arc.from started the walk on another edge of its triangle, and such
+  // ends bounded nothing: the walk slid past them.
+  const double on_edge = 1e-6 * diagonal_;
+  auto distance_to = [&](Index e, const Vec3& x) { return (point_at(e, nearest(e, x)) - x).norm(); };
+  auto where_on = [&](Index e, const Vec3& x) { return distance_to(e, x) <= on_edge ? nearest(e, x) : -1.0; };
+  // The walk starts at the border edge at a corner of `start` nearest arc.from; of two
+  // as near (arc.from at their shared corner), the later one, as it always has: the
+  // other starts the reach's count elsewhere.
   Index first = kNone;
+  double first_distance = std::numeric_limits<double>::infinity();
   for (Index v : mesh_.faces[start])
-    for (Index e : {border_out_[v], border_in_[v]})
-      if (e != kNone && (first == kNone || where_on(e, arc.from) >= 0)) first = e;
+    for (Index e : {border_out_[v], border_in_[v]}) {
+      const double d = e != kNone ? distance_to(e, arc.from) : first_distance;
+      if (e != kNone && d <= first_distance) first = e, first_distance = d;
+    }
   if (first == kNone) return best;
   // The closest point of border edge e between lo and hi (as where_on() measures);
   // returns the edge's length.
