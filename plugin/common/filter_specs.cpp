@@ -105,7 +105,7 @@ std::vector<ParamSpec> params_of(FilterId id) {
       {kSimplify, "PreserveBoundary", "Preserve boundary", ParamKind::Bool, 0, 0, 1,
        "Keep the mesh border exactly: no collapse touches a border vertex and smoothing leaves them in place. "
        "Off: border vertices slide along the border, and where a ragged outline leaves a border edge over "
-       "nothing, move inwards by at most one edge of the input."},
+       "nothing, move inwards by about one edge of the input at most."},
       {kSimplify, "KeepTips", "Keep tips", ParamKind::Bool, 0, 0, 1,
        "Hold a vertex at each point the input ends in at the scale of the quads (a claw, a toe, a nose; ours): the "
        "smoothing leaves it in place and collapses keep it there. Off: the smoothing can cut such tips back (the "
