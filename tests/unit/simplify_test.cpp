@@ -15,6 +15,7 @@
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/tri_to_quad.h"
 #include "quadsimp/convert/prepare_input.h"
+#include "quadsimp/fitmap/tips.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
 #include "quadsimp/mesh/clean.h"
@@ -372,6 +373,25 @@ TEST(Simplify, a_kept_tip_never_pulls_a_border_vertex_off_the_border) {
     const SimplifyReport r = simplify_open(open_below(bristly_sphere(40, 60, 0.8, 0.1), 0.6), target, true, gap);
     EXPECT_GT(r.chord_collapses, 0u);
     EXPECT_LT(gap, 1e-6);
+  }
+}
+
+TEST(Simplify, two_kept_tips_never_merge) {
+  // Two spikes 0.4 radians apart, their apexes 5% and 12% further apart than the side of
+  // the 30 quads asked for: both are tips, and a collapse comes to join their vertices
+  // across a quad's diagonal. Neither may go to the other's place: without the refusal,
+  // one tip was lost in both runs.
+  for (auto [length, half_angle] : {std::pair{0.6, 0.2}, std::pair{0.7, 0.3}}) {
+    SCOPED_TRACE(testing::Message() << "length " << length << ", half angle " << half_angle);
+    const std::vector<Vec3> axes = {Vec3(std::sin(0.2), 0, std::cos(0.2)), Vec3(-std::sin(0.2), 0, std::cos(0.2))};
+    TriMesh t = with_spikes(tri_sphere(40, 80), axes, length, half_angle);
+    Input in = prepare_input(MeshFile{t.positions, t.faces, {}}, "two spikes");
+    const ReferenceSurface ref(in.reference);
+    ASSERT_EQ(find_tips(ref.mesh(), tip_options_for(ref.mesh(), 30)).size(), 2u);
+    SimplifyOptions opt;
+    opt.target_faces = 30;
+    opt.keep_tips = opt.check_invariants = true;
+    EXPECT_EQ(simplify(in.quads, ref, opt).tips, 2u);
   }
 }
 
