@@ -104,8 +104,9 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
         ++rep_.refused_topology;
         return false;
       }
-      // p is a corner's own place, or the midpoint, to be brought onto M0's border.
-      foot = p == mid ? border_point_between(l, r, mid) : ref_.closest_within(p, 0.0);
+      // A corner keeps its own place; else the midpoint is brought onto M0's border.
+      const bool at_corner = is_border_corner(l) || is_border_corner(r);
+      foot = at_corner ? ref_.closest_within(p, 0.0) : border_point_between(l, r, mid);
     } else {
       foot = ref_.project_near(foot_face_[l], mid, m_.vertex_area_normal(l) + m_.vertex_area_normal(r),
                                2 * (m_.position(l) - m_.position(r)).norm());

@@ -110,7 +110,8 @@ class Simplifier {
   void hold_tips();
   void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
   void after_change(const Index* first, const Index* last);
-  void check_invariants() const;  // SimplifyOptions::check_invariants
+  // SimplifyOptions::check_invariants; border vertices on M0's border too unless told not.
+  void check_invariants(bool border_on_m0 = true) const;
   void check_border_on_m0() const;
   void add_faces_around(Index v, std::vector<Index>& faces);
   void requeue_region();
