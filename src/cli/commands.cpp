@@ -1,6 +1,7 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include "cli/commands.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "quadsimp/fitmap/anisotropy.h"
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/fitmap/tips.h"
 #include "quadsimp/io/load_input.h"
@@ -174,17 +176,37 @@ int run_fitmap(const FitmapArgs& a) {
     fo.progress = progress_bar(a.quiet);
     const Fitmaps f = compute_fitmaps(tri, fo);
     std::vector<VertexField> fields = {{"fitmap_s", f.s}, {"fitmap_m", f.m}};
-    std::string tips;
+    std::string names = "fitmap_s, fitmap_m", notes;  // for the summary
     if (a.tips_for > 0) {
       const std::vector<Index> found = find_tips(tri, tip_options_for(tri, a.tips_for));
       fields.push_back({"tip", std::vector<float>(tri.n_vertices(), 0.f)});
       for (Index v : found) fields.back().values[v] = 1.f;
-      tips = ", tip; " + std::to_string(found.size()) + " tips at " + std::to_string(a.tips_for) + " quads";
+      names += ", tip";
+      notes += "; " + std::to_string(found.size()) + " tips at " + std::to_string(a.tips_for) + " quads";
+    }
+    if (a.metric_for > 0) {
+      const Anisotropy an = anisotropy_for(tri, triangle_adjacency(tri), a.metric_for, a.max_aspect);
+      std::vector<float> aspect(tri.n_vertices()), along[3];
+      for (auto& x : along) x.resize(tri.n_vertices());
+      for (Index v = 0; v < tri.n_vertices(); ++v) {
+        const Stretch s = stretch_at(an, v);
+        aspect[v] = float(s.aspect);
+        for (int k = 0; k < 3; ++k) along[k][v] = float(s.along[k]);
+      }
+      std::vector<float> sorted = aspect;
+      std::sort(sorted.begin(), sorted.end());
+      char summary[96];
+      std::snprintf(summary, sizeof summary, "; aspect at %u quads: median %.2f, largest %.2f", a.metric_for,
+                    sorted.empty() ? 1.0 : sorted[sorted.size() / 2], sorted.empty() ? 1.0 : sorted.back());
+      fields.push_back({"aspect", std::move(aspect)});
+      for (int k = 0; k < 3; ++k) fields.push_back({std::string("long_") + "xyz"[k], std::move(along[k])});
+      names += ", aspect, long_x, long_y, long_z";
+      notes += summary;
     }
     write_tri_mesh_ply(a.output, tri, fields);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("%s: S and M fitmaps of %u vertices written to %s (per-vertex fitmap_s, fitmap_m%s; colour = S), %.2f s\n",
-                a.input.c_str(), tri.n_vertices(), a.output.c_str(), tips.c_str(), s);
+    std::printf("%s: S and M fitmaps of %u vertices written to %s (per-vertex %s; colour = S%s), %.2f s\n",
+                a.input.c_str(), tri.n_vertices(), a.output.c_str(), names.c_str(), notes.c_str(), s);
     return kOk;
   } catch (const InvalidInput& e) {
     std::cerr << "quadsimp fitmap: " << e.what() << "\n";

@@ -27,7 +27,9 @@ int run_simplify(const SimplifyArgs& args);
 struct FitmapArgs {
   std::string input, output;
   double tau = FitmapOptions().tau;
-  unsigned tips_for = 0;  // also the tips --keep-tips holds at this many quads (0: none)
+  unsigned tips_for = 0;    // also the tips --keep-tips holds at this many quads (0: none)
+  unsigned metric_for = 0;  // also adaptive mode's stretch at this many quads (0: none)
+  double max_aspect = SimplifyParams().max_aspect;
   bool quiet = false;
 };
 int run_fitmap(const FitmapArgs& args);

@@ -110,6 +110,14 @@ int main(int argc, char** argv) {
                  "also mark the tips that simplify's --keep-tips holds at N quads (per-vertex tip: 1 at each)")
       ->type_name("N")
       ->check(whole_number_from_one());
+  fm->add_option("--metric", fit.metric_for,
+                 "also write how much longer than wide simplify --adaptive lets quads grow at N quads, and along "
+                 "which direction (per-vertex aspect, and long_x, long_y, long_z: a unit vector, 0 where square)")
+      ->type_name("N")
+      ->check(whole_number_from_one());
+  fm->add_option("--max-aspect", fit.max_aspect, "with --metric: simplify's --max-aspect")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 100.0));
   fm->add_flag("-q,--quiet", fit.quiet, "no progress bar and no notes");
 
   StatsArgs stats;

@@ -380,7 +380,7 @@ TEST_F(Cli, fitmap_marks_the_tips_keep_tips_holds) {
   write_tri_mesh_ply(p("spiky.ply"), spiky);
   CliRun r = run("fitmap " + p("spiky.ply") + " " + p("f.ply") + " --tips 100 -q");
   ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("fitmap_s, fitmap_m, tip; 3 tips at 100 quads"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("fitmap_s, fitmap_m, tip; colour = S; 3 tips at 100 quads"), std::string::npos) << r.out;
   const std::vector<float> tip = ply_vertex_property(p("f.ply"), "tip");
   ASSERT_EQ(tip.size(), spiky.positions.size());
   std::vector<Vec3> marked;
@@ -396,6 +396,42 @@ TEST_F(Cli, fitmap_marks_the_tips_keep_tips_holds) {
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(ply_vertex_property(p("g.ply"), "tip").empty());
   EXPECT_EQ(run("fitmap " + p("spiky.ply") + " " + p("g.ply") + " --tips 0").code, 2);
+}
+
+TEST_F(Cli, fitmap_writes_the_stretch_of_adaptive_quads) {
+  // A torus of radii 1 and 0.3: on its outer equator quads may grow about sqrt(1.3 / 0.3)
+  // = 2.08 times longer along the ring than around the tube (the metric's radius at 1,200
+  // quads is 0.2, which the estimate takes in), and the long side runs along the ring.
+  const TriMesh torus = fixtures::tri_torus(120, 40, 1.0, 0.3);
+  write_tri_mesh_ply(p("torus.ply"), torus);
+  CliRun r = run("fitmap " + p("torus.ply") + " " + p("f.ply") + " --metric 1200 -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("fitmap_s, fitmap_m, aspect, long_x, long_y, long_z; colour = S; aspect at 1200 quads"),
+            std::string::npos)
+      << r.out;
+  const std::vector<float> aspect = ply_vertex_property(p("f.ply"), "aspect");
+  std::vector<float> along[3];
+  for (int k = 0; k < 3; ++k) along[k] = ply_vertex_property(p("f.ply"), std::string("long_") + "xyz"[k]);
+  ASSERT_EQ(aspect.size(), torus.positions.size());
+  std::size_t outer = 0;
+  for (std::size_t v = 0; v < aspect.size(); ++v) {
+    const Vec3& x = torus.positions[v];
+    if (x.head<2>().norm() < 1.29) continue;
+    ++outer;
+    const Vec3 ring = Vec3(-x.y(), x.x(), 0).normalized();
+    EXPECT_NEAR(aspect[v], 2.08, 0.2) << x.transpose();
+    EXPECT_GT(std::abs(ring.dot(Vec3(along[0][v], along[1][v], along[2][v]))), 0.99) << x.transpose();
+  }
+  EXPECT_EQ(outer, 3 * 120u);  // the equator and the rows 9 degrees around the tube either side
+  // --max-aspect bounds it, as simplify's does.
+  r = run("fitmap " + p("torus.ply") + " " + p("g.ply") + " --metric 1200 --max-aspect 1.5 -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::vector<float> bounded = ply_vertex_property(p("g.ply"), "aspect");
+  EXPECT_LE(*std::max_element(bounded.begin(), bounded.end()), 1.5f + 1e-5f);
+  r = run("fitmap " + p("torus.ply") + " " + p("h.ply") + " -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(ply_vertex_property(p("h.ply"), "aspect").empty());
+  EXPECT_EQ(run("fitmap " + p("torus.ply") + " " + p("h.ply") + " --metric 0").code, 2);
 }
 
 TEST_F(Cli, a_fin_on_an_edge_is_removed_and_reported) {

@@ -641,6 +641,22 @@ TEST(Anisotropy, a_torus_gets_the_aspect_of_its_curvatures_and_a_sphere_none) {
   EXPECT_LT(most, 1.1);
 }
 
+TEST(Anisotropy, stretch_at_reads_the_aspect_and_the_long_side) {
+  // G = s t1 t1^T + t2 t2^T / s + n n^T with s = 2, t1 and t2 at 30 degrees to x and y.
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  const Vec3 t1(c, s, 0), t2(-s, c, 0), n(0, 0, 1);
+  const Eigen::Matrix3d G = 2 * t1 * t1.transpose() + t2 * t2.transpose() / 2 + n * n.transpose();
+  Anisotropy a;
+  a.g = {{float(G(0, 0)), float(G(0, 1)), float(G(0, 2)), float(G(1, 1)), float(G(1, 2)), float(G(2, 2))},
+         {1.f, 0.f, 0.f, 1.f, 0.f, 1.f}};
+  const Stretch stretched = stretch_at(a, 0), square = stretch_at(a, 1);
+  EXPECT_NEAR(stretched.aspect, 2.0, 1e-6);
+  EXPECT_NEAR(std::abs(stretched.along.dot(t2)), 1.0, 1e-6);
+  EXPECT_EQ(square.aspect, 1.0);
+  EXPECT_EQ(square.along, Vec3::Zero());
+  EXPECT_EQ(stretch_at(Anisotropy{}, 0).aspect, 1.0);  // no metric: square everywhere
+}
+
 TEST(Anisotropy, does_not_depend_on_the_number_of_threads) {
   // Each vertex's ball is its own work, summed in the order of its search.
   const TriMesh t = flat_bumpy_ellipsoid(60, 90);

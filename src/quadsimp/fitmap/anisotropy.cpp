@@ -92,4 +92,24 @@ Anisotropy compute_anisotropy(const TriMesh& t, const std::vector<std::array<Ind
   return out;
 }
 
+Anisotropy anisotropy_for(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency, double quads,
+                          double max_aspect) {
+  return compute_anisotropy(mesh, adjacency, 2 * std::sqrt(surface_area(mesh) / quads), max_aspect);
+}
+
+Stretch stretch_at(const Anisotropy& a, Index v) {
+  if (a.empty()) return {};
+  const auto& g = a.g[v];
+  Eigen::Matrix3d G;
+  G << g[0], g[1], g[2], g[1], g[3], g[4], g[2], g[4], g[5];
+  // Eigenvalues 1/s, 1 and s, in that order: t2, n and t1.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(G);
+  const auto& l = eigen.eigenvalues();
+  Stretch out;
+  out.aspect = l(0) > 0 ? std::max(1.0, std::sqrt(l(2) / l(0))) : 1.0;
+  // Nearly even, t2 is float noise.
+  if (out.aspect > kLeastStretch) out.along = eigen.eigenvectors().col(0).normalized();
+  return out;
+}
+
 }  // namespace qs

@@ -30,5 +30,19 @@ struct Anisotropy {
 //! `adjacency` is the mesh's triangle_adjacency() (the reference surface holds it).
 Anisotropy compute_anisotropy(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
                               double radius, double max_aspect);
+//! The metric adaptive mode takes for a result of about `quads` quads: within twice the
+//! side of `quads` squares covering the mesh.
+Anisotropy anisotropy_for(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency, double quads,
+                          double max_aspect);
+
+//! What the metric says at one vertex: quads there may be `aspect` times longer (s) along
+//! `along` (t2, a unit vector) than across it; `along` is zero where aspect is at most
+//! kLeastStretch.
+constexpr double kLeastStretch = 1.001;
+struct Stretch {
+  double aspect = 1;
+  Vec3 along = Vec3::Zero();
+};
+Stretch stretch_at(const Anisotropy& a, Index v);
 
 }  // namespace qs

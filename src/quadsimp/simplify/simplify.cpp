@@ -520,9 +520,7 @@ SimplifyReport Simplifier::run() {
     if (opt_.target_faces == 0) rep_.predicted_faces = predicted_halt();
     const double count = opt_.target_faces > 0 ? double(opt_.target_faces) : rep_.predicted_faces;
     if (opt_.max_aspect > 1 && count > 0) {
-      // The metric at the scale of the result's quads: twice the side of count squares.
-      anisotropy_ = compute_anisotropy(ref_.mesh(), ref_.adjacency(), 2 * std::sqrt(ref_.area() / count),
-                                       opt_.max_aspect);
+      anisotropy_ = anisotropy_for(ref_.mesh(), ref_.adjacency(), count, opt_.max_aspect);
       metric_.assign(m_.vertex_capacity(), {1.f, 0.f, 0.f, 1.f, 0.f, 1.f});  // where a vertex has no foot
     }
   }
