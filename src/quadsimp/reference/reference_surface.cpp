@@ -313,8 +313,9 @@ SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, dou
   double first_distance = std::numeric_limits<double>::infinity();
   for (Index v : mesh_.faces[start])
     for (Index e : {border_out_[v], border_in_[v]}) {
-      const double d = e != kNone ? distance_to(e, arc.from) : first_distance;
-      if (e != kNone && d <= first_distance) first = e, first_distance = d;
+      if (e == kNone) continue;
+      const double d = distance_to(e, arc.from);
+      if (d <= first_distance) first = e, first_distance = d;
     }
   if (first == kNone) return best;
   // The closest point of border edge e between lo and hi (as where_on() measures);
