@@ -92,7 +92,7 @@ template <class CMesh>
 void require_faces(const CMesh& m, const std::string& name) {
   if (m.fn == 0)
     throw InvalidInput(name + ": the layer has no faces (" + std::to_string(m.vn) +
-                       " vertices: a point cloud?); quadsimp needs a triangle surface");
+                       " vertices: a point cloud, or lines only?); quadsimp needs a triangle surface");
 }
 
 //! The simplification parameters from either generation's RichParameterList (their

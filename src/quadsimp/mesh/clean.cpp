@@ -485,7 +485,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log) {
   if (m.positions.empty()) throw InvalidInput(src + ": the mesh is empty (no vertices)");
   if (m.faces.empty())
     throw InvalidInput(src + ": the mesh has no faces (" + std::to_string(m.n_vertices()) +
-                       " vertices: a point cloud?); quadsimp needs a triangle surface");
+                       " vertices: a point cloud, or lines only?); quadsimp needs a triangle surface");
   for (Index v = 0; v < m.n_vertices(); ++v)
     if (!m.positions[v].allFinite())
       throw InvalidInput(src + ": vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
