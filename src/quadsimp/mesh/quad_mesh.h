@@ -158,7 +158,8 @@ Index two_quad_piece_partner(const QuadMesh& mesh, Index f);
 //! The number of face diagonals whose two corners also share another face. Such quads
 //! touch at two corners without the edge between them; split into triangles along that
 //! diagonal, as vcglib's importers did with one such pair, they make an edge of four
-//! triangles. validate() accepts them, but the operators never make one: 0 expected.
+//! triangles. validate() accepts them, and an input may have some (the pairing of a
+//! low-poly mesh), but the operators never make one.
 //! Two-quad pieces (two_quad_piece_partner()) share theirs by nature and are not counted.
 Index count_shared_diagonals(const QuadMesh& mesh);
 

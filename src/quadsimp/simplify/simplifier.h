@@ -267,6 +267,10 @@ class Simplifier {
   std::vector<Index> border_candidates_;
   std::vector<char> border_noted_;
   std::vector<std::pair<Vec3, Vec3>> m0_border_;  // check_invariants: M0's border edges (start, start to end)
+  // check_invariants: the input's own shared diagonals (count_shared_diagonals()). The
+  // pairing of low-poly meshes makes some (pyvista's ant keeps 20 past the cleaning);
+  // the operators must add none.
+  Index shared_at_start_ = 0;
   void note_border(Index v) {
     if (!border_noted_[v] && m_.is_vertex_live(v) && m_.is_border_vertex(v))
       border_noted_[v] = 1, border_candidates_.push_back(v);

@@ -445,8 +445,9 @@ void Simplifier::after_change(const Index* first, const Index* last) {
 // coarsened, and nothing else would show it. The same for the pieces' face counts.
 void Simplifier::check_invariants(bool border_on_m0) const {
   validate(m_);
-  if (const Index shared = count_shared_diagonals(m_); shared > 0)
-    throw std::logic_error("simplify: " + std::to_string(shared) + " diagonals whose corners share another quad");
+  if (const Index shared = count_shared_diagonals(m_); shared > shared_at_start_)
+    throw std::logic_error("simplify: " + std::to_string(shared) + " diagonals whose corners share another quad (" +
+                           std::to_string(shared_at_start_) + " at the start)");
   for (Index v = 0; v < m_.vertex_capacity(); ++v)
     if (m_.is_vertex_live(v) && m_.is_border_vertex(v) && !border_noted_[v])
       throw std::logic_error("simplify: border vertex " + std::to_string(v) + " is not a border-coarsening candidate");
@@ -530,7 +531,8 @@ SimplifyReport Simplifier::run() {
       if (s.found()) record_foot(v, s);
     }
   hold_tips();
-  if (opt_.check_invariants) {  // M0's border edges, for check_border_on_m0()
+  if (opt_.check_invariants) {  // what the checks compare with: the input's shared diagonals and M0's border edges
+    shared_at_start_ = count_shared_diagonals(m_);
     const TriMesh& t = ref_.mesh();
     for (Index f = 0; f < t.n_faces(); ++f)
       for (int k = 0; k < 3; ++k)
