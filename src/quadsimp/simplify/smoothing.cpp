@@ -94,8 +94,8 @@ void Simplifier::smooth_vertex(Index v) {
     const Vec3 target = p + scale * step;
     SurfacePoint foot;
     if (border) {
-      // Not found (no border edge under v's foot) it stays: M0's closest point, the old
-      // fallback, leaves the border. Neither the tests nor any dataset run reached it.
+      // Where none is found (no border edge under v's foot), v stays: M0's closest point,
+      // the old fallback, leaves the border. Neither the tests nor any dataset run got here.
       foot = ref_.closest_on_border(foot_face_[v], target, 4 * mu_, arc);
     } else {
       foot = ref_.project_near(foot_face_[v], target, n, 2 * mu_);
