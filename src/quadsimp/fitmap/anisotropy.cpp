@@ -107,7 +107,6 @@ Stretch stretch_at(const Anisotropy& a, Index v) {
   const auto& l = eigen.eigenvalues();
   Stretch out;
   out.aspect = l(0) > 0 ? std::max(1.0, std::sqrt(l(2) / l(0))) : 1.0;
-  // Nearly even, t2 is float noise.
   if (out.aspect > kLeastStretch) out.along = eigen.eigenvectors().col(0).normalized();
   return out;
 }

@@ -38,11 +38,12 @@ Anisotropy anisotropy_for(const TriMesh& mesh, const std::vector<std::array<Inde
 //! What the metric says at one vertex: quads there may be `aspect` times longer (s) along
 //! `along` (t2, a unit vector) than across it; `along` is zero where aspect is at most
 //! kLeastStretch.
-constexpr double kLeastStretch = 1.001;
 struct Stretch {
   double aspect = 1;
   Vec3 along = Vec3::Zero();
 };
+//! Below this aspect t2 is float noise, and Stretch::along is left zero.
+constexpr double kLeastStretch = 1.001;
 Stretch stretch_at(const Anisotropy& a, Index v);
 
 }  // namespace qs
