@@ -305,7 +305,10 @@ SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, dou
   // ends bounded nothing: the walk slid past them.
   const double on_edge = 1e-6 * diagonal_;
   auto distance_to = [&](Index e, const Vec3& x) { return (point_at(e, nearest(e, x)) - x).norm(); };
-  auto where_on = [&](Index e, const Vec3& x) { return distance_to(e, x) <= on_edge ? nearest(e, x) : -1.0; };
+  auto where_on = [&](Index e, const Vec3& x) {
+    const double s = nearest(e, x);
+    return (point_at(e, s) - x).norm() <= on_edge ? s : -1.0;
+  };
   // The walk starts at the border edge at a corner of `start` nearest arc.from; of two
   // as near (arc.from at their shared corner), the later one, as it always has: the
   // other starts the reach's count elsewhere.
