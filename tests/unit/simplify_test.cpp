@@ -1254,7 +1254,7 @@ TEST(ReferenceSurface, closest_on_border_stays_within_its_arc) {
 
 TEST(ReferenceSurface, closest_on_border_takes_points_rounded_off_the_border) {
   // closest() searches from a float copy of its point, so a border vertex lies off the
-  // border by up to about 1e-7 of the diagonal (here 4e-6 input edges). Its arc must
+  // border by up to about 1e-7 of the diagonal (here 5e-6 input edges). Its arc must
   // still start and end where it does: matched within 1e-9 input edges, the walk started
   // on another edge of the triangle and slid past the arc's ends.
   TriMesh t = tri_grid(40, 40);
