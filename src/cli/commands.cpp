@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -145,7 +146,8 @@ int run_simplify(const SimplifyArgs& a) {
                                   ", \"refused\": {\"topology\": " + n(r.refused_topology) +
                                   ", \"valence\": " + n(r.refused_valence) + ", \"geometry\": " + n(r.refused_geometry) +
                                   ", \"fitmap\": " + n(r.refused_fitmap) + ", \"reach\": " + n(r.refused_reach) +
-                                  "}, \"blocked_share\": " + share + "}";
+                                  "}, \"blocked_share\": " + share +
+                                  ", \"predicted_faces\": " + n(Index(std::lround(r.predicted_faces))) + "}";
         j.pop_back();
         std::printf("%s%s\n", j.c_str(), extra.c_str());
         return kOk;

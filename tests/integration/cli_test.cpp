@@ -434,6 +434,22 @@ TEST_F(Cli, fitmap_writes_the_stretch_of_adaptive_quads) {
   EXPECT_EQ(run("fitmap " + p("torus.ply") + " " + p("h.ply") + " --metric 0").code, 2);
 }
 
+TEST_F(Cli, json_reports_the_count_automatic_halting_predicts) {
+  // The count the metric and the tips are taken at when no target is given: what
+  // `fitmap --metric N` needs to show a halted run's metric. 0 with a target.
+  write_tri_mesh_ply(p("torus.ply"), fixtures::tri_torus(120, 40, 1.0, 0.3));
+  auto predicted = [&](const std::string& mode) {
+    const CliRun r = run("simplify " + p("torus.ply") + " " + p("s.ply") + " " + mode + " --json -q --samples 2000");
+    EXPECT_EQ(r.code, 0) << r.out;
+    const auto at = r.out.find("\"predicted_faces\": ");
+    EXPECT_NE(at, std::string::npos) << r.out;
+    return at == std::string::npos ? -1 : std::stoi(r.out.substr(at + 19));
+  };
+  EXPECT_GT(predicted("--adaptive --auto-halt"), 0);
+  EXPECT_EQ(predicted("--adaptive --faces 200"), 0);
+  EXPECT_EQ(predicted("--faces 200"), 0);
+}
+
 TEST_F(Cli, a_fin_on_an_edge_is_removed_and_reported) {
   // Three triangles on edge 1-2 (the OBJ's numbering): the fin goes, though it is the
   // largest, and the plane's two triangles stay.
