@@ -86,20 +86,9 @@ TriMesh ragged_grid(int n, unsigned seed, int deepest = 1) {
 
 // The largest distance from a border vertex of q to M0's border.
 double border_gap(const QuadMesh& q, const ReferenceSurface& ref) {
-  const TriMesh& t = ref.mesh();
   double gap = 0;
-  for (Index v = 0; v < q.vertex_capacity(); ++v) {
-    if (!q.is_vertex_live(v) || !q.is_border_vertex(v)) continue;
-    double nearest = std::numeric_limits<double>::infinity();
-    for (Index f = 0; f < t.n_faces(); ++f)
-      for (int k = 0; k < 3; ++k) {
-        if (ref.adjacency()[f][k] != kNone) continue;
-        const Vec3 &a = t.positions[t.faces[f][k]], &b = t.positions[t.faces[f][(k + 1) % 3]];
-        const double u = std::clamp((q.position(v) - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-        nearest = std::min(nearest, (a + u * (b - a) - q.position(v)).norm());
-      }
-    gap = std::max(gap, nearest);
-  }
+  for (Index v = 0; v < q.vertex_capacity(); ++v)
+    if (q.is_vertex_live(v) && q.is_border_vertex(v)) gap = std::max(gap, ref.border_distance(q.position(v)));
   return gap;
 }
 
@@ -1250,6 +1239,21 @@ TEST(ReferenceSurface, closest_on_border_stays_within_its_arc) {
   EXPECT_LT((ref.closest_on_border(start, past_corner, 0.2, wide).point - Vec3(0, 0.03, 0)).norm(), 1e-12);
   EXPECT_LT((ref.closest_on_border(start, Vec3(-0.01, 0.5, 0), 0.2, wide).point - wide.behind).norm(), 1e-12);
   EXPECT_LT((ref.closest_on_border(start, Vec3(0.5, 0.01, 0), 0.2, wide).point - wide.ahead).norm(), 1e-12);
+}
+
+TEST(ReferenceSurface, border_distance_tries_every_border_edge) {
+  // The unit square's grid: the distance to the nearest of its four sides, from inside,
+  // above it and beyond a corner; a closed sphere has no border at all.
+  TriMesh t = tri_grid(40, 40);
+  clean(t);
+  const ReferenceSurface ref(t);
+  EXPECT_NEAR(ref.border_distance(Vec3(0.3, 0.1, 0)), 0.1, 1e-12);
+  EXPECT_NEAR(ref.border_distance(Vec3(0.5, 0.5, 0)), 0.5, 1e-12);
+  EXPECT_NEAR(ref.border_distance(Vec3(0.9, 0.5, 0.3)), 0.5 * std::sqrt(0.4), 1e-12);  // hypot(0.1, 0.3)
+  EXPECT_NEAR(ref.border_distance(Vec3(1.3, -0.4, 0)), 0.5, 1e-12);                  // from the corner (1, 0)
+  EXPECT_EQ(ref.border_distance(Vec3(1, 0, 0)), 0.0);
+  const ReferenceSurface sphere(tri_sphere(10, 20));
+  EXPECT_EQ(sphere.border_distance(Vec3::Zero()), std::numeric_limits<double>::infinity());
 }
 
 TEST(ReferenceSurface, closest_on_border_takes_points_rounded_off_the_border) {

@@ -138,6 +138,8 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
       if (adjacency_[f][k] == kNone) {
         border_out_[mesh_.faces[f][k]] = 3 * f + k;
         border_in_[mesh_.faces[f][(k + 1) % 3]] = 3 * f + k;
+        const Vec3& a = mesh_.positions[mesh_.faces[f][k]];
+        border_segments_.emplace_back(a, mesh_.positions[mesh_.faces[f][(k + 1) % 3]] - a);
       }
 
   bvh_->device = rtcNewDevice("threads=0");
@@ -353,6 +355,16 @@ SurfacePoint ReferenceSurface::closest_on_border(Index start, const Vec3& p, dou
     }
   }
   return best;
+}
+
+double ReferenceSurface::border_distance(const Vec3& p) const {
+  double d = std::numeric_limits<double>::infinity();
+  for (const auto& [a, ab] : border_segments_) {
+    const double len2 = ab.squaredNorm();
+    const double s = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    d = std::min(d, (a + s * ab - p).norm());
+  }
+  return d;
 }
 
 double ReferenceSurface::interpolate(const std::vector<float>& field, const SurfacePoint& s) const {

@@ -82,6 +82,9 @@ class ReferenceSurface {
   //! closest point on the whole surface leaves the border wherever the border bends out
   //! of its tangent plane, and one found past a neighbour reverses the border's order.
   SurfacePoint closest_on_border(Index start, const Vec3& p, double reach, const BorderArc& arc) const;
+  //! Distance from p to M0's border, every border edge tried (no walk): linear in the
+  //! border, for checks and tests. Infinite where M0 has no border.
+  double border_distance(const Vec3& p) const;
 
   //! Linear interpolation of a per-vertex field at a surface point.
   double interpolate(const std::vector<float>& field, const SurfacePoint& s) const;
@@ -105,6 +108,7 @@ class ReferenceSurface {
   // Per vertex, the border edge leaving it and the one arriving at it (3 * triangle +
   // corner, the edge running from that corner to the next), or kNone.
   std::vector<Index> border_out_, border_in_;
+  std::vector<std::pair<Vec3, Vec3>> border_segments_;  // each border edge's start, and start to end
   double diagonal_ = 0, mean_edge_ = 0, area_ = 0;
   Vec3 origin_ = Vec3::Zero();  // subtracted from every point Embree sees
   double unit_ = 1;             // then multiplied by this power of two (Embree's unit length)

@@ -266,7 +266,6 @@ class Simplifier {
   // bunny.ply split to 1.1M triangles.
   std::vector<Index> border_candidates_;
   std::vector<char> border_noted_;
-  std::vector<std::pair<Vec3, Vec3>> m0_border_;  // check_invariants: M0's border edges (start, start to end)
   // check_invariants: the input's own shared diagonals (count_shared_diagonals()). The
   // pairing of low-poly meshes makes some (pyvista's ant keeps 20 past the cleaning);
   // the operators must add none.

@@ -465,10 +465,7 @@ void Simplifier::check_invariants(bool border_on_m0) const {
 void Simplifier::check_border_on_m0() const {
   for (Index v = 0; v < m_.vertex_capacity(); ++v) {
     if (!m_.is_vertex_live(v) || !m_.is_border_vertex(v)) continue;
-    const Vec3& p = m_.position(v);
-    double gap = std::numeric_limits<double>::infinity();
-    for (const auto& [a, ab] : m0_border_)
-      gap = std::min(gap, (a + std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) * ab - p).norm());
+    const double gap = ref_.border_distance(m_.position(v));
     if (!(gap <= 1e-4 * ref_.mean_edge_length()))  // rounding: up to 1e-6 edges seen
       throw std::logic_error("simplify: border vertex " + std::to_string(v) + " is off M0's border by " +
                              std::to_string(gap / ref_.mean_edge_length()) + " input edges, at " +
@@ -531,16 +528,7 @@ SimplifyReport Simplifier::run() {
       if (s.found()) record_foot(v, s);
     }
   hold_tips();
-  if (opt_.check_invariants) {  // what the checks compare with: the input's shared diagonals and M0's border edges
-    shared_at_start_ = count_shared_diagonals(m_);
-    const TriMesh& t = ref_.mesh();
-    for (Index f = 0; f < t.n_faces(); ++f)
-      for (int k = 0; k < 3; ++k)
-        if (ref_.adjacency()[f][k] == kNone) {
-          const Vec3& a = t.positions[t.faces[f][k]];
-          m0_border_.emplace_back(a, t.positions[t.faces[f][(k + 1) % 3]] - a);
-        }
-  }
+  if (opt_.check_invariants) shared_at_start_ = count_shared_diagonals(m_);
   border_noted_.assign(m_.vertex_capacity(), 0);
   for (Index v = 0; v < m_.vertex_capacity(); ++v) note_border(v);
   has_border_ = !border_candidates_.empty();
