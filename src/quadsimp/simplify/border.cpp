@@ -96,15 +96,14 @@ void Simplifier::coarsen_border() {
     if (m_.is_vertex_live(b) && m_.is_border_vertex(b) && piece_room(b) > 0) remove_border_vertex(b);
 }
 
-// Where border vertices a and c merge: at a border corner if one of them is one (false
-// if both are), else at `otherwise`. Merging at the middle cut the corners of an
-// L-shaped grid by a third of mu (border coarsening) and took half a quad off a strip's
-// ends at every chord there.
-bool Simplifier::border_merge_point(Index a, Index c, const Vec3& otherwise, Vec3& p) const {
+// Which of border vertices a and c keeps its place when they merge: a border corner
+// (`corner`, kNone if neither is one; false if both are). Merging at the middle cut the
+// corners of an L-shaped grid by a third of mu (border coarsening) and took half a quad
+// off a strip's ends at every chord there.
+bool Simplifier::border_merge_corner(Index a, Index c, Index& corner) const {
   const bool corner_a = is_border_corner(a), corner_c = is_border_corner(c);
-  if (corner_a && corner_c) return false;
-  p = corner_a ? m_.position(a) : corner_c ? m_.position(c) : otherwise;
-  return true;
+  corner = corner_a ? a : corner_c ? c : kNone;
+  return !(corner_a && corner_c);
 }
 
 // The point of M0's border nearest p, on the stretch between border neighbours a and b
@@ -130,8 +129,9 @@ bool Simplifier::remove_border_vertex(Index b) {
   const int valence = m_.valence(b);
   if (ab + bc >= kBorderShort * mu_at(b) || valence > 3) return false;
   // a, b and c merge into one vertex, at b unless a or c is a corner.
-  Vec3 keep;
-  if (!border_merge_point(a, c, m_.position(b), keep)) return false;
+  Index corner;
+  if (!border_merge_corner(a, c, corner)) return false;
+  const Vec3 keep = m_.position(corner != kNone ? corner : b);
   // The ear is f with b at corner k, once b has a single face.
   auto try_ear = [&](Index ear, Index k) {
     // Unchecked, a corner that kept its place took in its border neighbours one after

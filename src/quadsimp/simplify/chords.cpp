@@ -99,14 +99,12 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
     } else if (bl != br) {
       foot = ref_.closest_within(m_.position(bl ? l : r), 0.0);
     } else if (bl) {
-      Vec3 p;
-      if (!border_merge_point(l, r, mid, p)) {
+      Index corner;
+      if (!border_merge_corner(l, r, corner)) {
         ++rep_.refused_topology;
         return false;
       }
-      // A corner keeps its own place; else the midpoint is brought onto M0's border.
-      const bool at_corner = is_border_corner(l) || is_border_corner(r);
-      foot = at_corner ? ref_.closest_within(p, 0.0) : border_point_between(l, r, mid);
+      foot = corner != kNone ? ref_.closest_within(m_.position(corner), 0.0) : border_point_between(l, r, mid);
     } else {
       foot = ref_.project_near(foot_face_[l], mid, m_.vertex_area_normal(l) + m_.vertex_area_normal(r),
                                2 * (m_.position(l) - m_.position(r)).norm());

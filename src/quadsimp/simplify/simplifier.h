@@ -201,7 +201,7 @@ class Simplifier {
     return opt_.max_valence > 0 &&
            m_.valence(m_.vertex(f, k + 3)) + m_.valence(m_.vertex(f, k + 1)) - 3 > opt_.max_valence;
   }
-  bool border_merge_point(Index a, Index c, const Vec3& otherwise, Vec3& p) const;
+  bool border_merge_corner(Index a, Index c, Index& corner) const;
   SurfacePoint border_point_between(Index a, Index b, const Vec3& p) const;
 
   // Poly-chord collapses (chords.cpp).
