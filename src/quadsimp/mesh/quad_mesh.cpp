@@ -289,12 +289,16 @@ Index two_quad_piece_partner(const QuadMesh& m, Index f) {
   return QuadMesh::face(t0);
 }
 
-Index count_shared_diagonals(const QuadMesh& m) {
-  Index n = 0;
+std::vector<std::pair<Index, Index>> shared_diagonals(const QuadMesh& m) {
+  std::vector<std::pair<Index, Index>> shared;
   for (Index f = 0; f < m.face_capacity(); ++f)
     if (m.is_face_live(f) && two_quad_piece_partner(m, f) == kNone)
-      for (Index k = 0; k < 2; ++k) n += share_a_face(m, m.vertex(f, k), m.vertex(f, k + 2), f);
-  return n;
+      for (Index k = 0; k < 2; ++k)
+        if (share_a_face(m, m.vertex(f, k), m.vertex(f, k + 2), f))
+          shared.push_back(std::minmax(m.vertex(f, k), m.vertex(f, k + 2)));
+  std::sort(shared.begin(), shared.end());
+  shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
+  return shared;
 }
 
 std::vector<std::uint8_t> split_diagonals(const QuadMesh& m) {

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "quadsimp/util/types.h"
@@ -155,13 +156,13 @@ bool share_a_face(const QuadMesh& mesh, Index p, Index q, Index skip_a = kNone, 
 //! quad mesh has), else kNone.
 Index two_quad_piece_partner(const QuadMesh& mesh, Index f);
 
-//! The number of face diagonals whose two corners also share another face. Such quads
-//! touch at two corners without the edge between them; split into triangles along that
-//! diagonal, as vcglib's importers did with one such pair, they make an edge of four
-//! triangles. validate() accepts them, and an input may have some (the pairing of a
-//! low-poly mesh), but the operators never make one.
-//! Two-quad pieces (two_quad_piece_partner()) share theirs by nature and are not counted.
-Index count_shared_diagonals(const QuadMesh& mesh);
+//! The face diagonals whose two corners also share another face, as corner pairs (lower
+//! id first), sorted, each once. Such quads touch at two corners without the edge between
+//! them; split into triangles along that diagonal, as vcglib's importers did with one such
+//! pair, they make an edge of four triangles. validate() accepts them, and an input may
+//! have some (the pairing of a low-poly mesh), but the operators never make one.
+//! Two-quad pieces (two_quad_piece_partner()) share theirs by nature and are left out.
+std::vector<std::pair<Index, Index>> shared_diagonals(const QuadMesh& mesh);
 
 //! For each face (by id; dead faces get 0), the diagonal along which to split it into two
 //! triangles, k for corners k and k+2: where possible not one whose corners are joined

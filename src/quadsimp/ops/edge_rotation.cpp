@@ -54,7 +54,7 @@ bool can_rotate_edge(const QuadMesh& m, Index h, Rotation r) {
   if (m.valence(x.u) - 1 < min_valence(m, x.u) || m.valence(x.w) - 1 < min_valence(m, x.w)) return false;
   // The new edge would be doubled. Two corners that end up opposite in a new face and
   // already share another face would make two quads touch at two corners without the
-  // edge between them (see count_shared_diagonals).
+  // edge between them (see shared_diagonals).
   const Index p = r == Rotation::Ccw ? x.x1 : x.x2, q = r == Rotation::Ccw ? x.y1 : x.y2;
   if (share_a_face(m, p, q, x.f1, x.f2)) return false;
   for (const auto& n : rotated_faces(m, h, r))

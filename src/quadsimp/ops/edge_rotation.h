@@ -30,7 +30,7 @@ std::array<Index, 2> rotated_edge(const QuadMesh& mesh, Index h, Rotation r);
 //! Refused (false) when: h is on the border; the faces are the same; the six hexagon
 //! corners are not distinct; the new endpoints already share a face outside the
 //! pair (the edge would be doubled); two corners that become opposite in a new face
-//! already share a face outside the pair (see count_shared_diagonals); u or w would
+//! already share a face outside the pair (see shared_diagonals); u or w would
 //! drop below valence 3 inside or 2 on the border (rotations never make doublets).
 bool can_rotate_edge(const QuadMesh& mesh, Index h, Rotation r);
 

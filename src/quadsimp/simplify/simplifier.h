@@ -266,10 +266,10 @@ class Simplifier {
   // bunny.ply split to 1.1M triangles.
   std::vector<Index> border_candidates_;
   std::vector<char> border_noted_;
-  // check_invariants: the input's own shared diagonals (count_shared_diagonals()). The
-  // pairing of low-poly meshes makes some (pyvista's ant keeps 20 past the cleaning);
-  // the operators must add none.
-  Index shared_at_start_ = 0;
+  // check_invariants: the input's own shared diagonals (shared_diagonals()). The pairing
+  // of low-poly meshes makes some (pyvista's ant keeps some past the cleaning); the
+  // operators must add none, and none of the input's may move to another vertex.
+  std::vector<std::pair<Index, Index>> shared_at_start_;
   void note_border(Index v) {
     if (!border_noted_[v] && m_.is_vertex_live(v) && m_.is_border_vertex(v))
       border_noted_[v] = 1, border_candidates_.push_back(v);

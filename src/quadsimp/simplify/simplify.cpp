@@ -445,9 +445,11 @@ void Simplifier::after_change(const Index* first, const Index* last) {
 // coarsened, and nothing else would show it. The same for the pieces' face counts.
 void Simplifier::check_invariants(bool border_on_m0) const {
   validate(m_);
-  if (const Index shared = count_shared_diagonals(m_); shared > shared_at_start_)
-    throw std::logic_error("simplify: " + std::to_string(shared) + " diagonals whose corners share another quad (" +
-                           std::to_string(shared_at_start_) + " at the start)");
+  const auto shared = shared_diagonals(m_);
+  if (!std::includes(shared_at_start_.begin(), shared_at_start_.end(), shared.begin(), shared.end()))
+    throw std::logic_error("simplify: a diagonal's corners share another quad where they did not at the start (" +
+                           std::to_string(shared.size()) + " such diagonals, " +
+                           std::to_string(shared_at_start_.size()) + " at the start)");
   for (Index v = 0; v < m_.vertex_capacity(); ++v)
     if (m_.is_vertex_live(v) && m_.is_border_vertex(v) && !border_noted_[v])
       throw std::logic_error("simplify: border vertex " + std::to_string(v) + " is not a border-coarsening candidate");
@@ -528,7 +530,7 @@ SimplifyReport Simplifier::run() {
       if (s.found()) record_foot(v, s);
     }
   hold_tips();
-  if (opt_.check_invariants) shared_at_start_ = count_shared_diagonals(m_);
+  if (opt_.check_invariants) shared_at_start_ = shared_diagonals(m_);
   border_noted_.assign(m_.vertex_capacity(), 0);
   for (Index v = 0; v < m_.vertex_capacity(); ++v) note_border(v);
   has_border_ = !border_candidates_.empty();
