@@ -179,15 +179,32 @@ int run_fitmap(const FitmapArgs& a) {
     const Fitmaps f = compute_fitmaps(tri, fo);
     std::vector<VertexField> fields = {{"fitmap_s", f.s}, {"fitmap_m", f.m}};
     std::string names = "fitmap_s, fitmap_m", notes;  // for the summary
-    if (a.tips_for > 0) {
-      const std::vector<Index> found = find_tips(tri, tip_options_for(tri, a.tips_for));
+    // "auto": the count simplify --adaptive --auto-halt takes its tips and stretch at.
+    Index predicted = 0;
+    if (a.tips_at == "auto" || a.metric_at == "auto") {
+      SimplifyOptions so;
+      so.adaptive = true;
+      so.fitmaps = &f;
+      so.m_factor = a.m_factor;
+      predicted = Index(std::lround(predicted_halting_faces(tri, so)));
+      if (predicted == 0)
+        throw InvalidInput(a.input + ": automatic halting predicts under half a quad here; give --tips and "
+                                     "--metric a face count");
+      notes += "; automatic halting predicted at " + std::to_string(predicted) + " quads";
+    }
+    auto count_at = [&](const std::string& at) {
+      return at == "auto" ? predicted : at.empty() ? 0 : Index(std::stoul(at));
+    };
+    const Index tips_for = count_at(a.tips_at), metric_for = count_at(a.metric_at);
+    if (tips_for > 0) {
+      const std::vector<Index> found = find_tips(tri, tip_options_for(tri, tips_for));
       fields.push_back({"tip", std::vector<float>(tri.n_vertices(), 0.f)});
       for (Index v : found) fields.back().values[v] = 1.f;
       names += ", tip";
-      notes += "; " + std::to_string(found.size()) + " tips at " + std::to_string(a.tips_for) + " quads";
+      notes += "; " + std::to_string(found.size()) + " tips at " + std::to_string(tips_for) + " quads";
     }
-    if (a.metric_for > 0) {
-      const Anisotropy an = anisotropy_for(tri, triangle_adjacency(tri), a.metric_for, a.max_aspect);
+    if (metric_for > 0) {
+      const Anisotropy an = anisotropy_for(tri, triangle_adjacency(tri), metric_for, a.max_aspect);
       std::vector<float> aspect(tri.n_vertices()), along[3];
       for (auto& x : along) x.resize(tri.n_vertices());
       for (Index v = 0; v < tri.n_vertices(); ++v) {
@@ -198,7 +215,7 @@ int run_fitmap(const FitmapArgs& a) {
       std::vector<float> sorted = aspect;
       std::sort(sorted.begin(), sorted.end());
       char summary[96];
-      std::snprintf(summary, sizeof summary, "; aspect at %u quads: median %.2f, largest %.2f", a.metric_for,
+      std::snprintf(summary, sizeof summary, "; aspect at %u quads: median %.2f, largest %.2f", metric_for,
                     sorted.empty() ? 1.0 : sorted[sorted.size() / 2], sorted.empty() ? 1.0 : sorted.back());
       fields.push_back({"aspect", std::move(aspect)});
       for (int k = 0; k < 3; ++k) fields.push_back({std::string("long_") + "xyz"[k], std::move(along[k])});

@@ -27,9 +27,11 @@ int run_simplify(const SimplifyArgs& args);
 struct FitmapArgs {
   std::string input, output;
   double tau = FitmapOptions().tau;
-  unsigned tips_for = 0;    // also the tips --keep-tips holds at this many quads (0: none)
-  unsigned metric_for = 0;  // also adaptive mode's stretch at this many quads (0: none)
+  // Also the tips --keep-tips holds, and adaptive mode's stretch, at a face count: a
+  // whole number, "auto" (where automatic halting is predicted to stop) or "" (not asked).
+  std::string tips_at, metric_at;
   double max_aspect = SimplifyParams().max_aspect;
+  double m_factor = SimplifyParams().m_factor;  // the prediction's, as simplify's
   bool quiet = false;
 };
 int run_fitmap(const FitmapArgs& args);

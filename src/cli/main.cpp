@@ -13,16 +13,25 @@ namespace {
 
 // CLI11's PositiveNumber answers 0 with "Value 0 not in range 0.000000 to" and the
 // largest double in 309 digits; these say what is wanted.
+std::string not_a_whole_number_from_one(const std::string& s) {
+  unsigned long long x = 0;
+  const unsigned long long most = std::numeric_limits<unsigned>::max();
+  if (!qs::parse_number(s, x) || x < 1 || x > most)
+    return "'" + s + "' is not a whole number from 1 to " + std::to_string(most);
+  return {};
+}
+
 CLI::Validator whole_number_from_one() {
+  return CLI::Validator([](std::string& s) { return not_a_whole_number_from_one(s); }, "N>=1");
+}
+
+CLI::Validator face_count_or_auto() {
   return CLI::Validator(
       [](std::string& s) -> std::string {
-        unsigned long long x = 0;
-        const unsigned long long most = std::numeric_limits<unsigned>::max();
-        if (!qs::parse_number(s, x) || x < 1 || x > most)
-          return "'" + s + "' is not a whole number from 1 to " + std::to_string(most);
-        return {};
+        if (s == "auto" || not_a_whole_number_from_one(s).empty()) return {};
+        return "'" + s + "' is neither a whole number from 1 nor 'auto'";
       },
-      "N>=1");
+      "");
 }
 
 CLI::Validator number_above_zero() {
@@ -106,18 +115,23 @@ int main(int argc, char** argv) {
   fm->add_option("IN", fit.input, "input mesh")->required()->check(CLI::ExistingFile);
   fm->add_option("OUT", fit.output, "output .ply (fitmap_s, fitmap_m per vertex; S as colour)")->required();
   fm->add_option("--tau", fit.tau, "M-fitmap tolerance (share of inconsistent area)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
-  fm->add_option("--tips", fit.tips_for,
-                 "also mark the tips that simplify's --keep-tips holds at N quads (per-vertex tip: 1 at each)")
-      ->type_name("N")
-      ->check(whole_number_from_one());
-  fm->add_option("--metric", fit.metric_for,
-                 "also write how much longer than wide simplify --adaptive lets quads grow at N quads, and along "
-                 "which direction (per-vertex aspect, and long_x, long_y, long_z: a unit vector, 0 where square)")
-      ->type_name("N")
-      ->check(whole_number_from_one());
+  fm->add_option("--tips", fit.tips_at,
+                 "also mark the tips that simplify's --keep-tips holds at N quads, or with auto where simplify "
+                 "--adaptive --auto-halt is predicted to stop (per-vertex tip: 1 at each)")
+      ->type_name("N|auto")
+      ->check(face_count_or_auto());
+  fm->add_option("--metric", fit.metric_at,
+                 "also write how much longer than wide simplify --adaptive lets quads grow at N quads (or auto, as "
+                 "--tips), and along which direction (per-vertex aspect, and long_x, long_y, long_z: a unit vector, "
+                 "0 where square)")
+      ->type_name("N|auto")
+      ->check(face_count_or_auto());
   fm->add_option("--max-aspect", fit.max_aspect, "with --metric: simplify's --max-aspect")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
+  fm->add_option("--m-factor", fit.m_factor, "with auto: simplify's --m-factor, which the predicted count depends on")
+      ->capture_default_str()
+      ->check(number_above_zero());
   fm->add_flag("-q,--quiet", fit.quiet, "no progress bar and no notes");
 
   StatsArgs stats;

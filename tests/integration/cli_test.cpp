@@ -450,6 +450,36 @@ TEST_F(Cli, json_reports_the_count_automatic_halting_predicts) {
   EXPECT_EQ(predicted("--faces 200"), 0);
 }
 
+TEST_F(Cli, fitmap_auto_takes_the_count_automatic_halting_predicts) {
+  // `--metric auto` and `--tips auto`: at the count simplify --adaptive --auto-halt
+  // reports as predicted_faces, where it takes its metric and tips; the same metric as
+  // `--metric` at that count.
+  write_tri_mesh_ply(p("torus.ply"), fixtures::tri_torus(120, 40, 1.0, 0.3));
+  CliRun r = run("simplify " + p("torus.ply") + " " + p("s.ply") + " --adaptive --auto-halt --json -q --samples 2000");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto at = r.out.find("\"predicted_faces\": ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string predicted = std::to_string(std::stoi(r.out.substr(at + 19)));
+  r = run("fitmap " + p("torus.ply") + " " + p("f.ply") + " --metric auto --tips auto -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("automatic halting predicted at " + predicted + " quads; 0 tips at " + predicted +
+                       " quads; aspect at " + predicted + " quads"),
+            std::string::npos)
+      << r.out << " (predicted " << predicted << ")";
+  ASSERT_EQ(run("fitmap " + p("torus.ply") + " " + p("g.ply") + " --metric " + predicted + " -q").code, 0);
+  const std::vector<float> aspect = ply_vertex_property(p("f.ply"), "aspect");
+  EXPECT_FALSE(aspect.empty());
+  EXPECT_EQ(aspect, ply_vertex_property(p("g.ply"), "aspect"));
+  EXPECT_EQ(ply_vertex_property(p("f.ply"), "tip").size(), aspect.size());
+  // A word that is neither; and a prediction under half a quad (faces may grow to a
+  // thousand times F_M), which gives no count to take them at.
+  EXPECT_EQ(run("fitmap " + p("torus.ply") + " " + p("h.ply") + " --metric automatic").code, 2);
+  r = run("fitmap " + p("torus.ply") + " " + p("h.ply") + " --tips auto --m-factor 0.001");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("automatic halting predicts under half a quad here"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(p("h.ply")));
+}
+
 TEST_F(Cli, a_fin_on_an_edge_is_removed_and_reported) {
   // Three triangles on edge 1-2 (the OBJ's numbering): the fin goes, though it is the
   // largest, and the plane's two triangles stay.

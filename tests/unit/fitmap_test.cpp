@@ -563,6 +563,28 @@ TEST(Adaptive, auto_halt_smooths_lightly_until_near_the_predicted_count) {
   EXPECT_LT(a.relaxations, b.relaxations / 3);
 }
 
+TEST(Adaptive, the_predicted_halting_count_is_the_runs_and_scales_with_the_m_factor) {
+  // predicted_halting_faces() is what a run reports (and what `fitmap --metric auto`
+  // takes). Faces reach F_M / m_factor at a key level m_factor times lower, so of sides
+  // m_factor times smaller: m_factor^2 times the count.
+  TriMesh t = tri_sphere(40, 60);
+  for (Vec3& p : t.positions) p *= 1 + 0.04 * std::sin(12 * p.x()) * std::cos(10 * p.y()) * std::sin(9 * p.z());
+  const ReferenceSurface ref(t);
+  const Fitmaps f = compute_fitmaps(t);
+  SimplifyOptions opt = adaptive_options(f);
+  const double predicted = predicted_halting_faces(t, opt);
+  EXPECT_GT(predicted, 5.0);
+  QuadMesh q = tri_to_quad(t);
+  EXPECT_EQ(simplify(q, ref, opt).predicted_faces, predicted);
+  opt.m_factor = 2;
+  EXPECT_NEAR(predicted_halting_faces(t, opt), 4 * predicted, 1e-9 * predicted);
+  // Nothing to go by: uniform mode, fitmaps of another mesh.
+  SimplifyOptions uniform;
+  uniform.fitmaps = &f;
+  EXPECT_EQ(predicted_halting_faces(t, uniform), 0.0);
+  EXPECT_EQ(predicted_halting_faces(tri_grid(10, 10), opt), 0.0);
+}
+
 TEST(Adaptive, keys_take_f_s_over_the_face_so_fine_noise_does_not_scatter_sizes) {
   // A flat square whose F_S is noise at the scale of M0's triangles (0.2 to 1.8, a hash
   // per vertex). Each key averages F_S under the face's centre and corners: one point

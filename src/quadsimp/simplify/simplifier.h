@@ -116,7 +116,6 @@ class Simplifier {
   void add_faces_around(Index v, std::vector<Index>& faces);
   void requeue_region();
   double blocked_share();
-  double predicted_halt() const;
   void record_foot(Index v, const SurfacePoint& s) {
     foot_normal_[v] = ref_.normal_at(s);
     foot_face_[v] = s.face;

@@ -41,7 +41,63 @@ double norm_of_diagonal(const QuadMesh& m, Index f, Index k) {
   return (m.position(m.vertex(f, k)) - m.position(m.vertex(f, k + 2))).norm();
 }
 
+// F_S's median (a scale only: sizes are relative) and the bounds it is clamped to
+// (SimplifyOptions::s_percentiles; none for 0).
+struct SRange {
+  double lo = 0, mid = 1, hi = std::numeric_limits<double>::infinity();
+};
+SRange s_range(const std::vector<float>& s, double q) {
+  std::vector<float> sorted = s;
+  std::sort(sorted.begin(), sorted.end());
+  SRange r;
+  r.mid = std::max(double(sorted[sorted.size() / 2]), detail::kLeastS);
+  if (q > 0) {
+    r.lo = std::max(double(sorted[std::size_t(q * (sorted.size() - 1))]), 0.5 * r.mid);
+    r.hi = std::min(double(sorted[std::size_t((1 - q) * (sorted.size() - 1))]), 2.0 * r.mid);
+  }
+  return r;
+}
+
 }  // namespace
+
+// Faces grow in the order of their key |d| F_S, so at key level K a face at p has
+// diagonal K / F_S(p), and its radius passes F_M(p) / m_factor once K > 2 F_M F_S /
+// m_factor. Take the level where those places cover 5% of M0; faces of diagonal d cover
+// d^2/2 each, so the count is the sum over M0 of 2 dA (F_S / K)^2. A rough guide, not a
+// rule: against the counts the datasets and re-rounded copies of them halt at, 0.44
+// (pensatore) to 1.17 (armadillo) of the actual count (bench/RESULTS.md).
+double predicted_halting_faces(const TriMesh& t, const SimplifyOptions& opt) {
+  constexpr double kShare = 0.05;
+  if (!opt.adaptive || !opt.fitmaps || t.n_vertices() == 0 || opt.fitmaps->s.size() != t.n_vertices() ||
+      opt.fitmaps->m.size() != t.n_vertices())
+    return 0;
+  const SRange range = s_range(opt.fitmaps->s, opt.s_percentiles);
+  struct Level {
+    double level, area, s;
+  };
+  std::vector<Level> levels;
+  levels.reserve(t.faces.size());
+  double total = 0;
+  for (const auto& f : t.faces) {
+    const double area = triangle_area(t.positions[f[0]], t.positions[f[1]], t.positions[f[2]]);
+    double fs = 0, fm = 0;
+    for (Index v : f) fs += opt.fitmaps->s[v] / 3.0, fm += opt.fitmaps->m[v] / 3.0;
+    fs = std::clamp(fs, range.lo, range.hi);
+    levels.push_back({2 * fm * fs / opt.m_factor, area, fs});
+    total += area;
+  }
+  std::sort(levels.begin(), levels.end(), [](const Level& x, const Level& y) { return x.level < y.level; });
+  double covered = 0, k = 0;
+  for (const Level& l : levels) {
+    covered += l.area;
+    k = l.level;
+    if (covered >= kShare * total) break;
+  }
+  if (!(k > 0)) return 0;
+  double faces = 0;
+  for (const Level& l : levels) faces += 2 * l.area * (l.s / k) * (l.s / k);
+  return faces;
+}
 
 double mean_edge_length(const QuadMesh& m) {
   double sum = 0;
@@ -275,43 +331,6 @@ void Simplifier::update_mu() {
   size_mean_ = n ? sum / n : 1.0;
 }
 
-// Where automatic halting will stop, predicted from the fitmaps alone. Faces grow in the
-// order of their key |d| F_S, so at key level K a face at p has diagonal K / F_S(p), and
-// its radius passes F_M(p) / m_factor once K > 2 F_M F_S / m_factor. Take the level where
-// those places cover 5% of M0; faces of diagonal d cover d^2/2 each, so the count is the
-// sum over M0 of 2 dA (F_S / K)^2; 0 if there is nothing to go by. A rough guide, not a
-// rule: against the counts the datasets and re-rounded copies of them halt at, 0.44
-// (pensatore) to 1.17 (armadillo) of the actual count (bench/RESULTS.md).
-double Simplifier::predicted_halt() const {
-  constexpr double kShare = 0.05;
-  const TriMesh& t = ref_.mesh();
-  struct Level {
-    double level, area, s;
-  };
-  std::vector<Level> levels;
-  levels.reserve(t.faces.size());
-  double total = 0;
-  for (const auto& f : t.faces) {
-    const double area = triangle_area(t.positions[f[0]], t.positions[f[1]], t.positions[f[2]]);
-    double fs = 0, fm = 0;
-    for (Index v : f) fs += opt_.fitmaps->s[v] / 3.0, fm += opt_.fitmaps->m[v] / 3.0;
-    fs = clamped_s(fs);
-    levels.push_back({2 * fm * fs / opt_.m_factor, area, fs});
-    total += area;
-  }
-  std::sort(levels.begin(), levels.end(), [](const Level& x, const Level& y) { return x.level < y.level; });
-  double covered = 0, k = 0;
-  for (const Level& l : levels) {
-    covered += l.area;
-    k = l.level;
-    if (covered >= kShare * total) break;
-  }
-  if (!(k > 0)) return 0;
-  double faces = 0;
-  for (const Level& l : levels) faces += 2 * l.area * (l.s / k) * (l.s / k);
-  return faces;
-}
-
 // Share of the surface where the M-fitmap blocks: faces whose every diagonal collapse
 // that the other checks allow it refuses (and at least one), by area, against the
 // mesh's area at the start. Measured afresh over all faces: a list of the refusals met in
@@ -508,16 +527,11 @@ SimplifyReport Simplifier::run() {
   centre_foot_.assign(m_.face_capacity(), kNone);
   size_.assign(m_.vertex_capacity(), 1.0);
   if (opt_.adaptive) {
-    std::vector<float> sorted = opt_.fitmaps->s;
-    std::sort(sorted.begin(), sorted.end());
-    s_mid_ = std::max(double(sorted[sorted.size() / 2]), kLeastS);  // a scale only: sizes are relative
-    if (const double q = opt_.s_percentiles; q > 0) {
-      s_lo_ = std::max(double(sorted[std::size_t(q * (sorted.size() - 1))]), 0.5 * s_mid_);
-      s_hi_ = std::min(double(sorted[std::size_t((1 - q) * (sorted.size() - 1))]), 2.0 * s_mid_);
-    }
+    const SRange range = s_range(opt_.fitmaps->s, opt_.s_percentiles);
+    s_lo_ = range.lo, s_mid_ = range.mid, s_hi_ = range.hi;
     s_foot_.assign(m_.vertex_capacity(), s_mid_);  // size 1 where a vertex has no foot
     reach_ = opt_.reach * ref_.bbox_diagonal();
-    if (opt_.target_faces == 0) rep_.predicted_faces = predicted_halt();
+    if (opt_.target_faces == 0) rep_.predicted_faces = predicted_halting_faces(ref_.mesh(), opt_);
     const double count = opt_.target_faces > 0 ? double(opt_.target_faces) : rep_.predicted_faces;
     if (opt_.max_aspect > 1 && count > 0) {
       anisotropy_ = anisotropy_for(ref_.mesh(), ref_.adjacency(), count, opt_.max_aspect);

@@ -226,6 +226,12 @@ struct SimplifyReport {
 //! \pre mesh is valid and lies on (or near) ref.
 SimplifyReport simplify(QuadMesh& mesh, const ReferenceSurface& ref, const SimplifyOptions& options = {});
 
+//! The face count at which automatic halting is predicted to stop, from the fitmaps alone
+//! (what simplify() reports as SimplifyReport::predicted_faces, and where it takes the
+//! stretch of max_aspect and the tips of keep_tips): for adaptive `options` with fitmaps
+//! computed on `reference`, the input's triangles; 0 otherwise, or with nothing to go by.
+double predicted_halting_faces(const TriMesh& reference, const SimplifyOptions& options);
+
 //! Mean edge length of a quad mesh (each edge once).
 double mean_edge_length(const QuadMesh& mesh);
 
