@@ -583,6 +583,14 @@ TEST(Adaptive, the_predicted_halting_count_is_the_runs_and_scales_with_the_m_fac
   uniform.fitmaps = &f;
   EXPECT_EQ(predicted_halting_faces(t, uniform), 0.0);
   EXPECT_EQ(predicted_halting_faces(tri_grid(10, 10), opt), 0.0);
+  // F_S 0 (exactly planar) on over 80% of the surface: the clamp still bounds it to
+  // [1/2, 2] of its median (raised to kLeastS), curved parts included, and the count
+  // follows F_M. It made the curved parts' F_S 0 (std::clamp's bounds the wrong way
+  // round), and the count 0.
+  Fitmaps planar = f;
+  for (std::size_t v = 0; v < planar.s.size(); ++v) planar.s[v] = v % 10 < 9 ? 0.f : 1.f;
+  opt.fitmaps = &planar;
+  EXPECT_GT(predicted_halting_faces(t, opt), 0.0);
 }
 
 TEST(Adaptive, keys_take_f_s_over_the_face_so_fine_noise_does_not_scatter_sizes) {
