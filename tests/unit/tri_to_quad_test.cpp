@@ -108,6 +108,34 @@ TEST(TriToQuad, no_perfect_pairing_splits_at_the_border) {
   EXPECT_GT(r.border_splits, 0u);
 }
 
+TEST(TriToQuad, what_no_search_pairs_is_refined_into_quads) {
+  // The last resort: the three-eared triangle above with searches of one triangle, which
+  // cannot reach even the border. The pair the greedy pass made becomes four quads about
+  // its diagonal's midpoint, and each leftover triangle three about its centroid; the
+  // input's vertices stay where they are.
+  TriMesh t;
+  t.positions = {{0, 0, 0}, {2, 0, 0}, {1, 2, 0}, {1, -1, 0.1}, {2.2, 1.3, 0.1}, {-0.2, 1.3, 0.1}};
+  t.faces = {{0, 1, 2}, {0, 3, 1}, {1, 4, 2}, {2, 5, 0}};
+  ConvertOptions opt;
+  opt.max_search = 1;
+  ConvertReport r;
+  const QuadMesh q = tri_to_quad(t, opt, &r);
+  validate(q);
+  EXPECT_TRUE(r.refined);
+  EXPECT_EQ(r.paired_greedy, 2u);
+  EXPECT_DOUBLE_EQ(r.pairing_rate(), 0.5);
+  EXPECT_EQ(r.border_splits, 0u);
+  EXPECT_EQ(q.n_faces(), 4u + 2 * 3u);
+  EXPECT_EQ(r.quads, q.n_faces());
+  // 6 input vertices, the midpoints of the 8 edges of the pair's quad and the leftovers
+  // (the edge the pair shares is a diagonal now), the quad's centre and 2 centroids.
+  EXPECT_EQ(q.n_vertices(), 6u + 8u + 1u + 2u);
+  for (Index v = 0; v < 6; ++v) EXPECT_EQ(q.position(v), t.positions[v]) << v;
+  for (Index f = 0; f < q.face_capacity(); ++f)  // not degenerate, and facing up as the input does
+    EXPECT_GT(q.face_area_normal(f).z(), 0.1 * q.face_area_normal(f).norm()) << f;
+  EXPECT_EQ(r.input_triangles, 4u);
+}
+
 TEST(TriToQuad, a_noisy_sphere_pairs_every_triangle_where_the_searches_leave_some) {
   // A closed surface always has a pairing of all its triangles, but the breadth-first
   // searches miss paths through odd cycles. On these noisy spheres (measured: 2 of 300
