@@ -321,21 +321,38 @@ TEST(Doublet, pillow_is_refused) {
   EXPECT_FALSE(can_remove_doublet(m, 0));
 }
 
-TEST(Singlet, face_with_two_edges_between_p_and_x_is_removed) {
-  // F_top = (p, x, t1, t2) above, F_bot = (x, p, b1, b2) below, and between them the
-  // singlet face (p, s, p, x) glued to both: it has two p-x edges.
+namespace {
+
+// F_top = (p, x, t1, t2) above (with `top`), F_bot = (x, p, b1, b2) below (with
+// `bottom`), and between them the singlet face (p, s, p, x) glued to those there: it has
+// two p-x edges. Vertices p = 0, x = 1, and s the last.
+QuadMesh with_singlet(bool top, bool bottom) {
   const Index p = 0, x = 1, t1 = 2, t2 = 3, b1 = 4, b2 = 5;
   std::vector<Vec3> pos = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, -1, 0}, {1, -1, 0}};
-  QuadMesh m = QuadMesh::from_faces(pos, {{p, x, t1, t2}, {x, p, b1, b2}});
-  const Index top_px = halfedge_between(m, p, x), bot_xp = halfedge_between(m, x, p);
-  m.set_twin(top_px, kNone);
-  m.set_twin(bot_xp, kNone);
+  std::vector<std::array<Index, 4>> faces;
+  if (top) faces.push_back({p, x, t1, t2});
+  if (bottom) faces.push_back({x, p, b1, b2});
+  QuadMesh m = QuadMesh::from_faces(pos, faces);
+  if (faces.empty()) m = QuadMesh(), m.add_vertex(pos[p]), m.add_vertex(pos[x]);
+  const Index top_px = top ? halfedge_between(m, p, x) : kNone, bot_xp = bottom ? halfedge_between(m, x, p) : kNone;
+  if (top) m.set_twin(top_px, kNone);
+  if (bottom) m.set_twin(bot_xp, kNone);
   const Index s = m.add_vertex(Vec3(0.3, 0.0, 0.1));
   const Index f = m.add_face({p, s, p, x});
   m.set_twin(QuadMesh::halfedge(f, 0), QuadMesh::halfedge(f, 1));  // p->s with s->p
   m.set_twin(QuadMesh::halfedge(f, 2), bot_xp);                    // p->x with x->p below
   m.set_twin(QuadMesh::halfedge(f, 3), top_px);                    // x->p with p->x above
   m.set_out(s, QuadMesh::halfedge(f, 1));
+  if (!top && !bottom) m.set_out(x, QuadMesh::halfedge(f, 3));
+  return m;
+}
+
+}  // namespace
+
+TEST(Singlet, face_with_two_edges_between_p_and_x_is_removed) {
+  QuadMesh m = with_singlet(true, true);
+  const Index p = 0, x = 1, s = 6;
+  const Index top_px = halfedge_between(m, p, x), bot_xp = halfedge_between(m, x, p);
   ASSERT_TRUE(is_singlet(m, s));
   EXPECT_THROW(validate(m), TopologyError);  // the face repeats p
   EXPECT_EQ(remove_singlet(m, s), p);
@@ -343,6 +360,39 @@ TEST(Singlet, face_with_two_edges_between_p_and_x_is_removed) {
   EXPECT_EQ(m.n_faces(), 2u);
   EXPECT_EQ(m.twin(top_px), bot_xp);
   EXPECT_FALSE(is_singlet(m, p));
+}
+
+TEST(Singlet, glued_on_one_side_or_none) {
+  // With a face on one side only, the other p-x edge becomes the border; with none, the
+  // face goes with all its corners.
+  for (const bool top : {true, false}) {
+    QuadMesh m = with_singlet(top, !top);
+    ASSERT_TRUE(is_singlet(m, 6));
+    EXPECT_EQ(remove_singlet(m, 6), 0u);
+    validate(m);
+    EXPECT_EQ(m.n_faces(), 1u);
+    EXPECT_EQ(m.n_vertices(), 4u);
+    EXPECT_TRUE(m.is_border_vertex(0));
+  }
+  QuadMesh lone = with_singlet(false, false);
+  ASSERT_TRUE(is_singlet(lone, 2));
+  EXPECT_EQ(remove_singlet(lone, 2), kNone);
+  EXPECT_EQ(lone.n_faces(), 0u);
+  EXPECT_EQ(lone.n_vertices(), 0u);
+}
+
+TEST(Singlet, the_cleaning_removes_it) {
+  // No operator leaves a singlet (their predicates refuse it), but the cleaning after
+  // each must remove one if it did, and count it.
+  QuadMesh m = with_singlet(true, true);
+  CleanCounts counts;
+  std::vector<Index> work = {6}, changed;
+  clean_from(m, work, counts, &changed);
+  validate(m);
+  EXPECT_EQ(counts.singlets, 1u);
+  EXPECT_EQ(counts.doublets, 0u);
+  EXPECT_EQ(m.n_faces(), 2u);
+  EXPECT_FALSE(changed.empty());
 }
 
 TEST(BorderEar, grid_corner_collapses) {

@@ -20,8 +20,7 @@ Index remove_singlet(QuadMesh& m, Index s) {
   const Index t1 = m.twin(px), t2 = m.twin(xp);  // x->p and p->x outside the face
   m.kill_face(QuadMesh::face(h));
   m.kill_vertex(s);
-  if (t1 != kNone) m.set_twin(t1, t2);
-  else if (t2 != kNone) m.set_twin(t2, kNone);
+  if (t1 != kNone && t2 != kNone) m.set_twin(t1, t2);  // else kill_face() left the one there on the border
   if (t1 == kNone && t2 == kNone) {
     // The face stood alone: its other corners go with it.
     m.kill_vertex(p);
