@@ -558,6 +558,35 @@ TEST_F(MeshIo, ply_variants_are_read) {
   ring += "300";
   for (int i = 0; i < 300; ++i) ring += " " + std::to_string(i);
   EXPECT_EQ(read_mesh(write("ring.ply", ring + "\n")).triangles.size(), 298u);
+
+  // Signed byte and short coordinates.
+  const MeshFile small = read_mesh(write("small.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty char x\n"
+                                                      "property short y\nproperty char z\nelement face 1\n"
+                                                      "property list uchar int vertex_indices\nend_header\n"
+                                                      "-128 0 0\n127 -32768 0\n0 32767 -1\n3 0 1 2\n"));
+  ASSERT_EQ(small.positions.size(), 3u);
+  EXPECT_EQ(small.positions[0], Vec3(-128, 0, 0));
+  EXPECT_EQ(small.positions[1], Vec3(127, -32768, 0));
+  EXPECT_EQ(small.positions[2], Vec3(0, 32767, -1));
+
+  // Triangle strips (old Stanford files), which vcglib reads: two strips of a 3 x 2
+  // grid of squares, -1 between them; each square as two triangles.
+  std::string strips = "ply\nformat ascii 1.0\nelement vertex 12\nproperty float x\nproperty float y\n"
+                       "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n";
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 4; ++x) strips += std::to_string(x) + " " + std::to_string(y) + " 0\n";
+  strips += "17 4 0 5 1 6 2 7 3 -1 8 4 9 5 10 6 11 7\n";
+  const MeshFile st = read_mesh(write("strips.ply", strips));
+  EXPECT_EQ(st.positions.size(), 12u);
+  EXPECT_EQ(st.triangles.size(), 12u);
+  const TriMesh grid = triangles_of(st);
+  Vec3 normal = Vec3::Zero();
+  for (const auto& f : grid.faces) {
+    const Vec3 n = (grid.positions[f[1]] - grid.positions[f[0]]).cross(grid.positions[f[2]] - grid.positions[f[0]]);
+    EXPECT_NEAR(n.norm(), 1.0, 1e-12);  // half a unit square, twice
+    normal += n;
+  }
+  EXPECT_NEAR(std::abs(normal.z()), 12.0, 1e-9);  // every triangle facing the same way
 }
 
 TEST_F(MeshIo, off_variants_are_read) {

@@ -100,12 +100,6 @@ QuadMesh QuadMesh::from_faces(std::vector<Vec3> positions,
   return m;
 }
 
-bool QuadMesh::is_border_face(Index f) const {
-  for (Index k = 0; k < 4; ++k)
-    if (twin_[4 * f + k] == kNone) return true;
-  return false;
-}
-
 Vec3 QuadMesh::face_area_normal(Index f) const {
   const auto q = face_vertices(f);
   return (pos_[q[2]] - pos_[q[0]]).cross(pos_[q[3]] - pos_[q[1]]);

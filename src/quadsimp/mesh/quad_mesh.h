@@ -62,8 +62,6 @@ class QuadMesh {
   bool is_vertex_live(Index v) const { return out_[v] != kNone; }
   bool is_border_halfedge(Index h) const { return twin_[h] == kNone; }
   bool is_border_vertex(Index v) const { return twin_[out_[v]] == kNone; }
-  //! True when f has at least one border edge.
-  bool is_border_face(Index f) const;
   //! The border half-edge arriving at border vertex v (the one out(v) does not reach).
   Index border_in(Index v) const {
     Index h = out_[v];
