@@ -189,12 +189,19 @@ TEST_F(Cli, bad_arguments_exit_2) {
     EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
     EXPECT_LT(r.out.size(), 200u) << r.out;
   }
-  // Never over the input, and the input is untouched.
+  // Never over the input, and the input is untouched; fitmaps go to PLY only.
   const auto before = fs::file_size(input_);
-  const CliRun r = run("convert " + input_ + " " + input_);
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.out.find("over the input"), std::string::npos);
+  for (const std::string command : {"convert", "simplify", "fitmap"}) {
+    const CliRun r = run(command + " " + input_ + " " + input_ + (command == "simplify" ? " --faces 10" : ""));
+    EXPECT_EQ(r.code, 2) << command;
+    EXPECT_NE(r.out.find("quadsimp " + command + ": "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("over the input"), std::string::npos) << r.out;
+  }
   EXPECT_EQ(fs::file_size(input_), before);
+  const CliRun r = run("fitmap " + input_ + " " + p("f.obj"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("quadsimp fitmap: the output must be a .ply file"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(p("f.obj")));
 }
 
 TEST_F(Cli, simplify_stats_and_fitmap) {
@@ -208,8 +215,18 @@ TEST_F(Cli, simplify_stats_and_fitmap) {
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("\"faces\": 60"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"border_loops\": 0"), std::string::npos) << r.out;
+  r = run("stats " + input_ + " " + out + " --samples 2000");  // the same, as text
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("faces 60, vertices 62 (0 on the border, in 0 loops), pure quad: yes"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("projectability"), std::string::npos) << r.out;
   r = run("stats " + input_ + " " + input_);  // triangles: not a quad mesh
   EXPECT_EQ(r.code, 1);
+  // A quad file converts to itself.
+  r = run("convert " + out + " " + p("again.obj"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("already pure quad, 60 quads written to " + p("again.obj")), std::string::npos) << r.out;
+  EXPECT_EQ(read_mesh(p("again.obj")).quads.size(), 60u);
   r = run("fitmap " + input_ + " " + p("f.ply") + " -q");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(fs::exists(p("f.ply")));
