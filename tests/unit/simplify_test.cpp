@@ -1313,6 +1313,28 @@ TEST(Simplify, a_strip_one_quad_wide_shortens_by_chord_collapses) {
   EXPECT_GT(simplify(without.quads, ref, opt).faces, 50u);
 }
 
+TEST(Simplify, a_strip_keeps_its_last_quad_and_its_corners) {
+  // The strip above asked for one quad: chord collapses across it leave one, the whole
+  // piece, whose corners all turn alike. The springs then slid two of them together (the
+  // last quad a triangle: bottom corners at x = 0.466 and 0.535).
+  TriMesh t = tri_grid(12, 1);
+  for (Vec3& p : t.positions) p.y() /= 12;
+  Case c = prepare(t);
+  const ReferenceSurface ref(c.tri);
+  SimplifyOptions opt;
+  opt.target_faces = 1;
+  opt.check_invariants = true;
+  const SimplifyReport r = simplify(c.quads, ref, opt);
+  validate(c.quads);
+  EXPECT_GT(r.chord_collapses, 0u);
+  ASSERT_EQ(c.quads.n_faces(), 1u);
+  std::vector<Vec3> corners;
+  for (Index k = 0; k < 4; ++k) corners.push_back(c.quads.position(c.quads.vertex(0, k)));
+  for (const Vec3& corner : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1.0 / 12, 0), Vec3(0, 1.0 / 12, 0)})
+    EXPECT_TRUE(std::any_of(corners.begin(), corners.end(), [&](const Vec3& x) { return (x - corner).norm() < 1e-9; }))
+        << corner.transpose();
+}
+
 TEST(Metrics, regular_grid_and_cube) {
   const QuadQuality g = quad_quality(quad_grid(6, 5));
   EXPECT_DOUBLE_EQ(g.regular_percent, 100.0 * (42 - 4) / 42);  // only the 4 corners are irregular

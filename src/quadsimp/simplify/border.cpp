@@ -59,6 +59,14 @@ double Simplifier::border_turn(Index v) const {
 bool Simplifier::is_border_corner(Index v) const {
   const double t = border_turn(v);
   if (t <= M_PI / 4) return false;
+  // A piece of one quad: its corners all turn alike and pass neither test below, and the
+  // springs slid two of them together (a strip asked for one quad ended a triangle).
+  if (m_.valence(v) == 2) {
+    const Index f = QuadMesh::face(m_.out(v));
+    bool alone = true;
+    for (Index k = 0; k < 4; ++k) alone &= m_.is_border_halfedge(QuadMesh::halfedge(f, k));
+    if (alone) return true;
+  }
   const Index next = m_.next_on_border(v), prev = m_.prev_on_border(v);
   const double t_next = border_turn(next), t_prev = border_turn(prev);
   if (std::max(t_next, t_prev) < 0.5 * t) return true;
