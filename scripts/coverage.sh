@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Line coverage of the library and the CLI by the unit and CLI tests (qs_tests): builds
+# build-coverage/ with gcc's --coverage, runs the tests (about 6 minutes on 2 cores, three
+# times the Release run), and lists each source file of src/ with lines no test ran,
+# worst first; with -v, the lines themselves. Needs scripts/setup.sh's packages only
+# (gcov comes with gcc). The MeshLab plugins are tested through MeshLab, not here.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build="$here/build-coverage"
+verbose=0
+[[ "${1:-}" == "-v" ]] && verbose=1
+
+cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS="--coverage -O1" \
+  -DCMAKE_EXE_LINKER_FLAGS="--coverage" -DQS_BUILD_PLUGIN_2020=OFF -DQS_BUILD_PLUGIN_2025=OFF \
+  -DQS_BUILD_BENCH=OFF >/dev/null
+cmake --build "$build" --target qs_tests quadsimp --parallel "$(nproc)"
+find "$build" -name '*.gcda' -delete
+# A failing test still leaves its coverage: report it, and fail at the end.
+status=0
+(cd "$build" && tests/qs_tests --gtest_brief=1) || status=$?
+
+report="$build/gcov"
+rm -rf "$report" && mkdir -p "$report"
+cd "$report"
+# -p keeps the paths in the names, so that headers and sources of one name stay apart.
+find "$build/src" -name '*.gcda' -not -path '*/.deps/*' -exec gcov -p -o {} {} \; >/dev/null 2>&1 || true
+# Per-object runs of gcov each write a source's file; a source compiled once has one.
+for f in *'#src#'*.cpp.gcov; do
+  [[ -e "$f" ]] || continue
+  total=$(grep -cE '^ +([0-9]+\*?|#####):' "$f" || true)
+  missed=$(grep -cE '^ +#####:' "$f" || true)
+  echo "$missed $total ${f##*#src#}"
+done | sort -rn | awk '$1 > 0 { gsub("#", "/", $3); sub(/\.gcov$/, "", $3); printf "%5d of %5d lines not run  src/%s\n", $1, $2, $3 }'
+if ((verbose)); then
+  for f in *'#src#'*.cpp.gcov; do
+    grep -qE '^ +#####:' "$f" || continue
+    echo "== src/$(echo "${f##*#src#}" | tr '#' '/' | sed 's/\.gcov$//')"
+    grep -E '^ +#####:' "$f" | cut -c1-160
+  done
+fi
+exit "$status"
