@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <set>
 
@@ -172,27 +173,49 @@ TEST(QuadMesh, from_faces_pairs_twins_around_a_vertex_of_high_valence) {
 }
 
 TEST(QuadMesh, validate_catches_corruption) {
-  {
+  // Each corruption of a 2 x 2 grid (centre vertex 4), and the check that must name it:
+  // every operator test leans on validate(), so each check is shown to catch its own.
+  const std::vector<std::pair<std::string, std::function<void(QuadMesh&)>>> cases = {
+      {"twin of twin of half-edge " + std::to_string(quad_grid(2, 2).twin(1)) + " is not itself",
+       [](QuadMesh& m) { m.set_twin(1, kNone); }},  // one-sided: its twin still points at it
+      {"face 0 repeats vertex", [](QuadMesh& m) { m.set_origin(1, m.from(0)); }},
+      {"vertex 1 is not a single fan",  // an interior out-edge on a border vertex hides part of its fan
+       [](QuadMesh& m) { m.set_out(1, m.rotate(m.out(1))); }},
+      {"vertex 8 has an invalid out half-edge",  // a corner left without faces but live
+       [](QuadMesh& m) {
+         m.kill_face(3);
+         for (Index h = 0; h < 12; ++h)  // the other corners' fans start at the new border
+           if (const Index v = m.from(h); v == 4 || v == 5 || v == 7) m.set_out(v, h), m.repair_out(v);
+       }},
+      {"face 0 uses a dead or invalid vertex", [](QuadMesh& m) { m.kill_vertex(4); }},
+      {"has a dead twin",
+       [](QuadMesh& m) {
+         const Index h = m.twin(QuadMesh::halfedge(3, 0)), t = QuadMesh::halfedge(3, 0);
+         m.kill_face(3);
+         m.set_twin(h, t);
+       }},
+      {"and its twin are not reversed (orientation)",
+       [](QuadMesh& m) {  // two interior edges' twins swapped
+         Index a = kNone, b = kNone;
+         for (Index h = 0; h < 4 && b == kNone; ++h)
+           if (m.twin(h) != kNone) (a == kNone ? a : b) = h;
+         const Index ta = m.twin(a), tb = m.twin(b);
+         m.set_twin(a, tb);
+         m.set_twin(b, ta);
+       }},
+      {"a directed edge appears twice", [](QuadMesh& m) { m.add_face(m.face_vertices(0)); }},
+      {"vertex 4 has an invalid out half-edge", [](QuadMesh& m) { m.set_out(4, m.out(0)); }},
+  };
+  for (const auto& [message, corrupt] : cases) {
     QuadMesh m = quad_grid(2, 2);
-    m.set_twin(1, kNone);  // one-sided: the twin of interior half-edge 1 still points at it
-    EXPECT_THROW(validate(m), TopologyError);
-  }
-  {
-    QuadMesh m = quad_grid(2, 2);
-    m.set_origin(1, m.from(0));  // repeated vertex in face 0
-    EXPECT_THROW(validate(m), TopologyError);
-  }
-  {
-    QuadMesh m = quad_grid(2, 2);
-    // An interior out-edge on a border vertex hides part of its fan.
-    const Index side = 1;
-    m.set_out(side, m.rotate(m.out(side)));
-    EXPECT_THROW(validate(m), TopologyError);
-  }
-  {
-    QuadMesh m = quad_grid(2, 2);
-    m.kill_face(3);  // leaves vertex 8 without faces while it is still live
-    EXPECT_THROW(validate(m), TopologyError);
+    validate(m);
+    corrupt(m);
+    try {
+      validate(m);
+      ADD_FAILURE() << "not caught: " << message;
+    } catch (const TopologyError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what() << " (expected: " << message << ")";
+    }
   }
 }
 
