@@ -578,6 +578,15 @@ TEST(Adaptive, the_predicted_halting_count_is_the_runs_and_scales_with_the_m_fac
   EXPECT_EQ(simplify(q, ref, opt).predicted_faces, predicted);
   opt.m_factor = 2;
   EXPECT_NEAR(predicted_halting_faces(t, opt), 4 * predicted, 1e-9 * predicted);
+  // simplify() refuses adaptive mode without fitmaps of its reference surface.
+  for (const Fitmaps* wrong : {static_cast<const Fitmaps*>(nullptr), &f}) {
+    const TriMesh other = tri_sphere(10, 12);
+    QuadMesh o = tri_to_quad(other);
+    const ReferenceSurface other_ref(other);
+    SimplifyOptions bad = adaptive_options(f);
+    bad.fitmaps = wrong;  // none, or the sphere's
+    EXPECT_THROW(simplify(o, other_ref, bad), std::invalid_argument);
+  }
   // Nothing to go by: uniform mode, fitmaps of another mesh.
   SimplifyOptions uniform;
   uniform.fitmaps = &f;

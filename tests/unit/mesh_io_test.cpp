@@ -632,6 +632,13 @@ TEST_F(MeshIo, writes_are_atomic_and_refuse_unknown_formats) {
   std::size_t files = 0;
   for (const auto& e : fs::directory_iterator(dir_)) files += e.is_regular_file();
   EXPECT_EQ(files, 1u);  // no temporary left beside it
+  // Callers' mistakes, not the user's: a colour short, a field of the wrong size.
+  EXPECT_THROW(write_quad_mesh(path("c.ply"), cube(), std::vector<Colour>(7)), std::invalid_argument);
+  const TriMesh t = tri_sphere(5, 6);
+  EXPECT_THROW(write_tri_mesh_ply(path("f.ply"), t, {{"s", std::vector<float>(t.n_vertices() - 1)}}),
+               std::invalid_argument);
+  EXPECT_FALSE(fs::exists(path("c.ply")));
+  EXPECT_FALSE(fs::exists(path("f.ply")));
 }
 
 TEST_F(MeshIo, fields_are_written_as_ply_properties) {
