@@ -559,6 +559,14 @@ TEST_F(MeshIo, ply_variants_are_read) {
   for (int i = 0; i < 300; ++i) ring += " " + std::to_string(i);
   EXPECT_EQ(read_mesh(write("ring.ply", ring + "\n")).triangles.size(), 298u);
 
+  // The magic word in capitals, with CRLF line ends (compas's tube mesh).
+  const MeshFile caps = read_mesh(write("caps.ply", "PLY\r\nformat ascii 1.0\r\nelement vertex 3\r\n"
+                                                    "property float x\r\nproperty float y\r\nproperty float z\r\n"
+                                                    "element face 1\r\nproperty list uchar int vertex_indices\r\n"
+                                                    "end_header\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n"));
+  EXPECT_EQ(caps.triangles.size(), 1u);
+  EXPECT_EQ(caps.positions[1], Vec3(1, 0, 0));
+
   // Signed byte and short coordinates.
   const MeshFile small = read_mesh(write("small.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty char x\n"
                                                       "property short y\nproperty char z\nelement face 1\n"

@@ -157,7 +157,11 @@ Header read_header(const std::string& path, const std::string& file) {
     detail::split_fields(std::string_view(file).substr(pos, eol - pos), f);
     pos = eol + 1;
     if (line == 0) {
-      if (f.size() != 1 || f[0] != "ply") unreadable(path, "the file does not start with 'ply'");
+      // In capitals too: compas's sample tube mesh says "PLY" (MeshLab refuses it).
+      const auto magic = [](std::string_view w) {
+        return w.size() == 3 && (w[0] | 0x20) == 'p' && (w[1] | 0x20) == 'l' && (w[2] | 0x20) == 'y';
+      };
+      if (f.size() != 1 || !magic(f[0])) unreadable(path, "the file does not start with 'ply'");
       continue;
     }
     if (f.empty() || f[0] == "comment" || f[0] == "obj_info") continue;
