@@ -266,7 +266,7 @@ class Simplifier {
   std::vector<Index> border_candidates_;
   std::vector<char> border_noted_;
   // check_invariants: the input's own shared diagonals (shared_diagonals()). The pairing
-  // of low-poly meshes makes some (pyvista's ant keeps some past the cleaning); the
+  // of low-poly meshes makes some (pyvista's ant keeps 10 past the cleaning); the
   // operators must add none, and none of the input's may move to another vertex.
   std::vector<std::pair<Index, Index>> shared_at_start_;
   void note_border(Index v) {

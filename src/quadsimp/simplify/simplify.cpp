@@ -55,7 +55,8 @@ SRange s_range(const std::vector<float>& s, double q) {
     r.lo = std::max(double(sorted[std::size_t(q * (sorted.size() - 1))]), 0.5 * r.mid);
     // Not below the median: where F_S is 0 (exactly planar) up to the upper quantile, the
     // median is raised to kLeastS and the quantile is not, and std::clamp needs lo <= hi.
-    r.hi = std::min(std::max(double(sorted[std::size_t((1 - q) * (sorted.size() - 1))]), r.mid), 2.0 * r.mid);
+    const double upper = sorted[std::size_t((1 - q) * (sorted.size() - 1))];
+    r.hi = std::min(std::max(upper, r.mid), 2.0 * r.mid);
   }
   return r;
 }
