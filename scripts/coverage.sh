@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Line coverage of the library and the CLI by the unit and CLI tests (qs_tests): builds
-# build-coverage/ with gcc's --coverage, runs the tests (about 6 minutes on 2 cores, three
-# times the Release run), and lists each source file of src/ with lines no test ran,
-# worst first; with -v, the lines themselves. Needs scripts/setup.sh's packages only
+# build-coverage/ with gcc's --coverage, runs the tests (about 7 minutes on 2 cores, the
+# build included), and lists each source file of src/ with lines no test ran, worst
+# first; with -v, the lines themselves. Needs scripts/setup.sh's packages only
 # (gcov comes with gcc). The MeshLab plugins are tested through MeshLab, not here.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
