@@ -182,11 +182,10 @@ int run_fitmap(const FitmapArgs& a) {
     // "auto": the count simplify --adaptive --auto-halt takes its tips and stretch at.
     Index predicted = 0;
     if (a.tips_at == "auto" || a.metric_at == "auto") {
-      SimplifyOptions so;
-      so.adaptive = true;
-      so.fitmaps = &f;
-      so.m_factor = a.m_factor;
-      predicted = Index(std::lround(predicted_halting_faces(tri, so)));
+      SimplifyParams p;
+      p.adaptive = p.auto_halt = true;
+      p.m_factor = a.m_factor;
+      predicted = Index(std::lround(predicted_halting_faces(tri, simplify_options(p, &f))));
       if (predicted == 0)
         throw InvalidInput(a.input + ": automatic halting predicts under half a quad here; give --tips and "
                                      "--metric a face count");

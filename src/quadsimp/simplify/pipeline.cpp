@@ -26,30 +26,37 @@ std::string check_params(const SimplifyParams& p) {
   return {};
 }
 
-SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const SimplifyParams& p,
-                              const ProgressFn& progress) {
-  if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
+SimplifyOptions simplify_options(const SimplifyParams& p, const Fitmaps* fitmaps) {
   SimplifyOptions opt;
   opt.target_faces = p.target_faces;
   opt.preserve_boundary = p.preserve_boundary;
   opt.keep_tips = p.keep_tips;
   opt.passes = p.fast ? 1 : 2;
-  opt.progress = progress;
-  Fitmaps fitmaps;
   if (p.adaptive) {
-    FitmapOptions fo;
-    fo.tau = p.tau;
-    fo.progress = progress;
-    fitmaps = compute_fitmaps(ref.mesh(), fo);
     opt.adaptive = true;
     opt.refuse_folds = true;
-    opt.fitmaps = &fitmaps;
+    opt.fitmaps = fitmaps;
     opt.m_factor = p.m_factor;
     opt.m_slack = p.m_slack;
     opt.halt_share = p.halt_share;
     opt.max_aspect = p.max_aspect;
     opt.reach = p.reach;
   }
+  return opt;
+}
+
+SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const SimplifyParams& p,
+                              const ProgressFn& progress) {
+  if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
+  Fitmaps fitmaps;
+  if (p.adaptive) {
+    FitmapOptions fo;
+    fo.tau = p.tau;
+    fo.progress = progress;
+    fitmaps = compute_fitmaps(ref.mesh(), fo);
+  }
+  SimplifyOptions opt = simplify_options(p, &fitmaps);
+  opt.progress = progress;
   SimplifyReport r = simplify(in.quads, ref, opt);
   if (p.fit_to_input && !r.cancelled) {
     SurfaceFitOptions fit;

@@ -32,6 +32,11 @@ struct SimplifyParams {
 //! Checks a parameter combination; returns "" or the reason it is refused.
 std::string check_params(const SimplifyParams& params);
 
+//! The core's options for `params` (no progress callback), with `fitmaps` (computed on
+//! the reference surface with params.tau) in adaptive mode: what simplify_input() runs
+//! with, and what predicted_halting_faces() must be given to predict its halting count.
+SimplifyOptions simplify_options(const SimplifyParams& params, const Fitmaps* fitmaps);
+
 //! The whole job on prepared input: fitmaps on `ref` in adaptive mode, then simplify(),
 //! then fit_to_surface() if asked.
 //! `ref` is the reference surface of `in.reference` (the caller keeps it for measuring
