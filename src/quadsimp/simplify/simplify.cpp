@@ -61,20 +61,15 @@ SRange s_range(const std::vector<float>& s, double q) {
   return r;
 }
 
-}  // namespace
-
 // Faces grow in the order of their key |d| F_S, so at key level K a face at p has
 // diagonal K / F_S(p), and its radius passes F_M(p) / m_factor once K > 2 F_M F_S /
 // m_factor. Take the level where those places cover 5% of M0; faces of diagonal d cover
 // d^2/2 each, so the count is the sum over M0 of 2 dA (F_S / K)^2. A rough guide, not a
 // rule: against the counts the datasets and re-rounded copies of them halt at, 0.44
-// (pensatore) to 1.17 (armadillo) of the actual count (bench/RESULTS.md).
-double predicted_halting_faces(const TriMesh& t, const SimplifyOptions& opt) {
+// (pensatore) to 1.17 (armadillo) of the actual count (bench/RESULTS.md). `range` is
+// s_range() of the fitmaps (the loop has it already: one sort of F_S per run).
+double predicted_halting_faces(const TriMesh& t, const SimplifyOptions& opt, const SRange& range) {
   constexpr double kShare = 0.05;
-  if (!opt.adaptive || !opt.fitmaps || t.n_vertices() == 0 || opt.fitmaps->s.size() != t.n_vertices() ||
-      opt.fitmaps->m.size() != t.n_vertices())
-    return 0;
-  const SRange range = s_range(opt.fitmaps->s, opt.s_percentiles);
   struct Level {
     double level, area, s;
   };
@@ -100,6 +95,15 @@ double predicted_halting_faces(const TriMesh& t, const SimplifyOptions& opt) {
   double faces = 0;
   for (const Level& l : levels) faces += 2 * l.area * (l.s / k) * (l.s / k);
   return faces;
+}
+
+}  // namespace
+
+double predicted_halting_faces(const TriMesh& t, const SimplifyOptions& opt) {
+  if (!opt.adaptive || !opt.fitmaps || t.n_vertices() == 0 || opt.fitmaps->s.size() != t.n_vertices() ||
+      opt.fitmaps->m.size() != t.n_vertices())
+    return 0;
+  return predicted_halting_faces(t, opt, s_range(opt.fitmaps->s, opt.s_percentiles));
 }
 
 double mean_edge_length(const QuadMesh& m) {
@@ -534,7 +538,7 @@ SimplifyReport Simplifier::run() {
     s_lo_ = range.lo, s_mid_ = range.mid, s_hi_ = range.hi;
     s_foot_.assign(m_.vertex_capacity(), s_mid_);  // size 1 where a vertex has no foot
     reach_ = opt_.reach * ref_.bbox_diagonal();
-    if (opt_.target_faces == 0) rep_.predicted_faces = predicted_halting_faces(ref_.mesh(), opt_);
+    if (opt_.target_faces == 0) rep_.predicted_faces = predicted_halting_faces(ref_.mesh(), opt_, range);
     const double count = opt_.target_faces > 0 ? double(opt_.target_faces) : rep_.predicted_faces;
     if (opt_.max_aspect > 1 && count > 0) {
       anisotropy_ = anisotropy_for(ref_.mesh(), ref_.adjacency(), count, opt_.max_aspect);
