@@ -77,10 +77,10 @@ class ReferenceSurface {
   //! Closest point to p on M0's border, searched along the border from the border edge
   //! nearest arc.from among those at a corner of triangle `start`, within `reach` (length
   //! along the border) and within the arc (its ends matched within 1e-6 of the diagonal);
-  //! not found when `start` touches no border. Border
-  //! vertices slide along the border with it, between their border neighbours: the
-  //! closest point on the whole surface leaves the border wherever the border bends out
-  //! of its tangent plane, and one found past a neighbour reverses the border's order.
+  //! not found when `start` touches no border. Border vertices slide along the border
+  //! with it, between their border neighbours: the closest point on the whole surface
+  //! leaves the border wherever the border bends out of its tangent plane, and one found
+  //! past a neighbour reverses the border's order.
   SurfacePoint closest_on_border(Index start, const Vec3& p, double reach, const BorderArc& arc) const;
   //! Distance from p to M0's border, every border edge tried (no walk): linear in the
   //! border, for checks and tests. Infinite where M0 has no border.
