@@ -195,13 +195,13 @@ TEST(QuadMesh, validate_catches_corruption) {
          m.set_twin(h, t);
        }},
       {"and its twin are not reversed (orientation)",
-       [](QuadMesh& m) {  // two interior edges' twins swapped
-         Index a = kNone, b = kNone;
-         for (Index h = 0; h < 4 && b == kNone; ++h)
-           if (m.twin(h) != kNone) (a == kNone ? a : b) = h;
-         const Index ta = m.twin(a), tb = m.twin(b);
-         m.set_twin(a, tb);
-         m.set_twin(b, ta);
+       [](QuadMesh& m) {  // face 0's two interior edges swap twins
+         std::vector<Index> inner;
+         for (Index h = 0; h < 4; ++h)
+           if (m.twin(h) != kNone) inner.push_back(h);
+         const Index ta = m.twin(inner[0]), tb = m.twin(inner[1]);
+         m.set_twin(inner[0], tb);
+         m.set_twin(inner[1], ta);
        }},
       {"a directed edge appears twice", [](QuadMesh& m) { m.add_face(m.face_vertices(0)); }},
       {"vertex 4 has an invalid out half-edge", [](QuadMesh& m) { m.set_out(4, m.out(0)); }},
@@ -214,7 +214,8 @@ TEST(QuadMesh, validate_catches_corruption) {
       validate(m);
       ADD_FAILURE() << "not caught: " << message;
     } catch (const TopologyError& e) {
-      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what() << " (expected: " << message << ")";
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos)
+          << e.what() << " (expected: " << message << ")";
     }
   }
 }

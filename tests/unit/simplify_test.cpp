@@ -736,7 +736,7 @@ TEST(Simplify, pieces_that_cannot_shrink_do_not_take_the_quads_of_the_others) {
 TEST(Simplify, an_inputs_own_shared_diagonals_pass_the_invariant_checks) {
   // Quads A and B both have a and b as opposite corners, with no edge a-b; four more
   // quads close the fans around a and b. The pairing of low-poly meshes makes such quads
-  // (pyvista's ant has 20 diagonals so after cleaning), which the checks refused before
+  // (pyvista's ant has 10 such pairs after cleaning), which the checks refused before
   // the first collapse. They now refuse only such diagonals the input did not have.
   enum : Index { a, b, x, y, u, w, p, q, r, s };
   const std::vector<Vec3> P = {{0, 0, 1},   {0, 0, -1},    {1, 0, 0},  {0, 1, 0},     {-1, 0, 0},
@@ -1330,9 +1330,10 @@ TEST(Simplify, a_strip_keeps_its_last_quad_and_its_corners) {
   ASSERT_EQ(c.quads.n_faces(), 1u);
   std::vector<Vec3> corners;
   for (Index k = 0; k < 4; ++k) corners.push_back(c.quads.position(c.quads.vertex(0, k)));
-  for (const Vec3& corner : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1.0 / 12, 0), Vec3(0, 1.0 / 12, 0)})
-    EXPECT_TRUE(std::any_of(corners.begin(), corners.end(), [&](const Vec3& x) { return (x - corner).norm() < 1e-9; }))
-        << corner.transpose();
+  for (const Vec3& corner : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1.0 / 12, 0), Vec3(0, 1.0 / 12, 0)}) {
+    const auto at = [&](const Vec3& x) { return (x - corner).norm() < 1e-9; };
+    EXPECT_TRUE(std::any_of(corners.begin(), corners.end(), at)) << corner.transpose();
+  }
 }
 
 TEST(Metrics, regular_grid_and_cube) {
@@ -1381,7 +1382,7 @@ TEST(Metrics, closed_pieces_of_two_quads_are_counted_and_named) {
     const QuadMesh m = QuadMesh::from_faces(positions, quads);
     const QuadQuality q = quad_quality(m);
     EXPECT_EQ(q.two_quad_pieces, Index(piece + 1));
-    // Their diagonals are shared by nature, not by an operator (check_invariants() counts them).
+    // Their diagonals are shared by nature, not by an operator (shared_diagonals() leaves them out).
     EXPECT_TRUE(shared_diagonals(m).empty());
     EXPECT_EQ(q.folded_faces, Index(2 * (piece + 1)));
     const std::string pieces = piece == 0 ? "; 1 closed piece is two quads on the same four corners, "
