@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Line coverage of the library and the CLI by the unit and CLI tests (qs_tests): builds
-# build-coverage/ with gcc's --coverage, runs the tests (about 7 minutes on 2 cores, the
-# build included), and lists each source file of src/ with lines no test ran, worst
-# first; with -v, the lines themselves. Needs scripts/setup.sh's packages only
-# (gcov comes with gcc). The MeshLab plugins are tested through MeshLab, not here.
+# Line coverage of the library, the CLI and the plugins' shared code (plugin/common) by the
+# unit and CLI tests (qs_tests): builds build-coverage/ with gcc's --coverage, runs the
+# tests (about 7 minutes on 2 cores, the build included), and lists each source file of
+# src/ and plugin/common/ with lines no test ran, worst first; with -v, the lines
+# themselves. Needs scripts/setup.sh's packages only (gcov comes with gcc). The plugins'
+# adapters (plugin/meshlab20xx) are tested through MeshLab, not here.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="$here/build-coverage"
@@ -23,18 +24,20 @@ report="$build/gcov"
 rm -rf "$report" && mkdir -p "$report"
 cd "$report"
 # -p keeps the paths in the names, so that headers and sources of one name stay apart.
-find "$build/src" -name '*.gcda' -not -path '*/.deps/*' -exec gcov -p -o {} {} \; >/dev/null 2>&1 || true
-# Per-object runs of gcov each write a source's file; a source compiled once has one.
-for f in *'#src#'*.cpp.gcov; do
-  [[ -e "$f" ]] || continue
+find "$build/src" "$build/tests" -name '*.gcda' -not -path '*/.deps/*' -exec gcov -p -o {} {} \; >/dev/null 2>&1 || true
+# Per-object runs of gcov each write a source's file; a source compiled once has one, and
+# plugin/common's headers are compiled into qs_tests alone.
+files() { ls *'#src#'*.cpp.gcov *'#plugin#common#'*.gcov 2>/dev/null || true; }
+name() { local f=${1#*#"${here##*/}"#}; f=${f//#//}; echo "${f%.gcov}"; }
+for f in $(files); do
   total=$(grep -cE '^ +([0-9]+\*?|#####):' "$f" || true)
   missed=$(grep -cE '^ +#####:' "$f" || true)
-  echo "$missed $total ${f##*#src#}"
-done | sort -rn | awk '$1 > 0 { gsub("#", "/", $3); sub(/\.gcov$/, "", $3); printf "%5d of %5d lines not run  src/%s\n", $1, $2, $3 }'
+  echo "$missed $total $(name "$f")"
+done | sort -rn | awk '$1 > 0 { printf "%5d of %5d lines not run  %s\n", $1, $2, $3 }'
 if ((verbose)); then
-  for f in *'#src#'*.cpp.gcov; do
+  for f in $(files); do
     grep -qE '^ +#####:' "$f" || continue
-    echo "== src/$(echo "${f##*#src#}" | tr '#' '/' | sed 's/\.gcov$//')"
+    echo "== $(name "$f")"
     grep -E '^ +#####:' "$f" | cut -c1-160
   done
 fi

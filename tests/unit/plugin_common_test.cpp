@@ -1,0 +1,414 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+// The MeshLab plugins' shared code (plugin/common) without MeshLab: its layer
+// conversions on meshes built like MeshLab's CMeshO (optional components, in float as
+// 2020.09 builds it and in double as pymeshlab's 2025.07d does), its parameter mapping
+// and its filter bodies. The meshlabserver and pymeshlab suites run the same code inside
+// MeshLab; these reach the cases those cannot build (deleted elements, doublets, each
+// parameter on its own) in seconds, and give the code a coverage figure.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <vcg/complex/complex.h>
+
+#include "filter_runner.h"
+#include "filter_specs.h"
+#include "fixtures/shapes.h"
+#include "layer_conversion.h"
+#include "quadsimp/fitmap/fitmap.h"
+#include "quadsimp/mesh/clean.h"
+#include "quadsimp/reference/reference_surface.h"
+#include "quadsimp/util/errors.h"
+
+using namespace qs;
+using namespace qs::plugin;
+using namespace qs::fixtures;
+
+namespace {
+
+// A MeshLab layer's mesh: CMeshO's components that the plugin's code touches, with
+// marks and adjacency optional as in MeshLab (VertexColours enables the marks).
+template <class S>
+struct Parts {
+  template <class T> class VCoord : public vcg::vertex::Coord<vcg::Point3<S>, T> {};
+  template <class T> class VNormal : public vcg::vertex::Normal<vcg::Point3<S>, T> {};
+  template <class T> class VQuality : public vcg::vertex::Quality<S, T> {};
+  template <class T> class FNormal : public vcg::face::NormalAbs<vcg::Point3<S>, T> {};
+};
+template <class S> class LayerVertex;
+template <class S> class LayerFace;
+template <class S>
+struct LayerTypes : vcg::UsedTypes<vcg::Use<LayerVertex<S>>::template AsVertexType,
+                                   vcg::Use<LayerFace<S>>::template AsFaceType> {};
+template <class S>
+class LayerVertex
+    : public vcg::Vertex<LayerTypes<S>, vcg::vertex::InfoOcf, Parts<S>::template VCoord, vcg::vertex::BitFlags,
+                         Parts<S>::template VNormal, Parts<S>::template VQuality, vcg::vertex::Color4b,
+                         vcg::vertex::MarkOcf> {};
+template <class S>
+class LayerFace : public vcg::Face<LayerTypes<S>, vcg::face::InfoOcf, vcg::face::VertexRef, vcg::face::BitFlags,
+                                   Parts<S>::template FNormal, vcg::face::MarkOcf, vcg::face::FFAdjOcf> {};
+template <class S>
+class Layer
+    : public vcg::tri::TriMesh<vcg::vertex::vector_ocf<LayerVertex<S>>, vcg::face::vector_ocf<LayerFace<S>>> {
+ public:
+  ~Layer() { this->ClearAttributes(); }
+};
+
+// A quad up to where its corner list starts, as positions (in float, as 2020.09's
+// layers hold them): comparable across meshes whose vertex ids differ.
+using Corners = std::array<std::array<float, 3>, 4>;
+Corners corners_of(const std::vector<Vec3>& p, std::array<Index, 4> q) {
+  std::rotate(q.begin(), std::min_element(q.begin(), q.end(), [&](Index a, Index b) {
+                return std::lexicographical_compare(p[a].data(), p[a].data() + 3, p[b].data(), p[b].data() + 3);
+              }), q.end());
+  Corners c;
+  for (int k = 0; k < 4; ++k) c[k] = {float(p[q[k]].x()), float(p[q[k]].y()), float(p[q[k]].z())};
+  return c;
+}
+std::set<Corners> quads_of(const std::vector<Vec3>& positions, const std::vector<std::array<Index, 4>>& quads) {
+  std::set<Corners> out;
+  for (const auto& q : quads) out.insert(corners_of(positions, q));
+  return out;
+}
+std::set<Corners> quads_of(const QuadMesh& q) { return quads_of(q.positions(), q.quads()); }
+
+template <class S>
+class PluginLayer : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(PluginLayer, Scalars);
+
+TYPED_TEST(PluginLayer, quads_come_back_from_their_triangle_pairs) {
+  for (const QuadMesh& q : {quad_grid(4, 3), cube()}) {
+    Layer<TypeParam> layer;
+    assign_quads(layer, q);
+    ASSERT_EQ(layer.fn, int(2 * q.n_faces()));
+    ASSERT_EQ(layer.vn, int(q.n_vertices()));
+    // Each triangle has one faux edge: the diagonal it shares with its quad's other half.
+    for (const auto& f : layer.face) EXPECT_EQ(int(f.IsF(0)) + int(f.IsF(1)) + int(f.IsF(2)), 1);
+    const MeshFile back = mesh_file_of(layer);
+    EXPECT_TRUE(back.is_pure_quad());
+    EXPECT_EQ(quads_of(back.positions, back.quads), quads_of(q));
+  }
+}
+
+TYPED_TEST(PluginLayer, deleted_vertices_and_faces_are_left_out) {
+  const QuadMesh q = quad_grid(3, 3);
+  Layer<TypeParam> layer;
+  assign_quads(layer, q);
+  // The first quad (assign_quads() writes each quad's two triangles in turn) and its
+  // corner 0, which no other quad uses, deleted as a filter that does not compact leaves
+  // them. assign_quads() keeps the order of the live vertices.
+  using Alloc = vcg::tri::Allocator<Layer<TypeParam>>;
+  ASSERT_EQ(q.valence(0), 2);
+  Alloc::DeleteFace(layer, layer.face[0]);
+  Alloc::DeleteFace(layer, layer.face[1]);
+  Alloc::DeleteVertex(layer, layer.vert[0]);
+  std::vector<std::array<Index, 4>> kept = q.quads();
+  kept.erase(kept.begin());
+  const MeshFile back = mesh_file_of(layer);
+  EXPECT_EQ(back.positions.size(), q.n_vertices() - 1);
+  EXPECT_TRUE(back.is_pure_quad());
+  for (const auto& quad : back.quads)
+    for (Index v : quad) ASSERT_LT(v, back.positions.size());
+  EXPECT_EQ(quads_of(back.positions, back.quads), quads_of(q.positions(), kept));
+}
+
+TYPED_TEST(PluginLayer, a_doublet_is_two_pairs_and_no_triangle_twice) {
+  // Two quads on the same four corners around an inner vertex, each listed from a corner
+  // of diagonal 1-3, which both have: split along it, both would make triangle (1, 3, 4).
+  const std::vector<Vec3> p = {{-1, 0, 0}, {0, -0.4, 0}, {1, 0, 0}, {0, 0.4, 0}, {-0.5, 0, 0}};
+  const QuadMesh q = QuadMesh::from_faces(p, {{3, 0, 1, 4}, {1, 2, 3, 4}});
+  Layer<TypeParam> layer;
+  assign_quads(layer, q);
+  std::set<std::set<const void*>> triangles;
+  for (const auto& f : layer.face) triangles.insert({f.cV(0), f.cV(1), f.cV(2)});
+  EXPECT_EQ(triangles.size(), layer.face.size());
+  const MeshFile back = mesh_file_of(layer);
+  EXPECT_TRUE(back.is_pure_quad());
+  EXPECT_EQ(quads_of(back.positions, back.quads), quads_of(q));
+}
+
+TYPED_TEST(PluginLayer, fitmaps_go_to_the_live_vertices_in_order) {
+  Layer<TypeParam> layer;
+  assign_quads(layer, quad_grid(1, 1));
+  layer.vert.EnableMark();  // an optional component: storing must not disturb the others
+  vcg::tri::Allocator<Layer<TypeParam>>::DeleteVertex(layer, layer.vert[1]);
+  const Fitmaps f{{0.5f, 1.5f, 2.5f}, {3.f, 4.f, 5.f}};
+  store_fitmaps(layer, f);
+  auto s = vcg::tri::Allocator<Layer<TypeParam>>::template GetPerVertexAttribute<TypeParam>(layer, "FitmapS");
+  auto m = vcg::tri::Allocator<Layer<TypeParam>>::template GetPerVertexAttribute<TypeParam>(layer, "FitmapM");
+  const std::size_t live[] = {0, 2, 3};
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(s[live[i]], TypeParam(f.s[i]));
+    EXPECT_EQ(m[live[i]], TypeParam(f.m[i]));
+    EXPECT_EQ(layer.vert[live[i]].Q(), TypeParam(f.s[i]));
+  }
+}
+
+TYPED_TEST(PluginLayer, quads_take_the_colour_at_their_closest_point) {
+  // A strip from x = 0 (red) to x = 1 (blue); quads above it at x = 0.25 and 1 (and
+  // beyond, past its end).
+  Layer<TypeParam> input;
+  assign_quads(input, quad_grid(1, 1));
+  for (auto& v : input.vert) v.C() = v.cP()[0] < 0.5 ? vcg::Color4b(255, 0, 0, 255) : vcg::Color4b(0, 0, 255, 255);
+  const std::vector<Vec3> p = {{0.25, 0, 0.1}, {1, 0, 0.1}, {2, 1, 0.1}, {0.25, 1, 0.1}};
+  Layer<TypeParam> quads;
+  assign_quads(quads, QuadMesh::from_faces(p, {{0, 1, 2, 3}}));
+  paint(VertexColours<Layer<TypeParam>>(input), quads);
+  EXPECT_EQ(quads.vert[0].C(), vcg::Color4b(191, 0, 64, 255));
+  EXPECT_EQ(quads.vert[1].C(), vcg::Color4b(0, 0, 255, 255));
+  EXPECT_EQ(quads.vert[2].C(), vcg::Color4b(0, 0, 255, 255));
+  // One colour all over is passed on as it is.
+  for (auto& v : input.vert) v.C() = vcg::Color4b(10, 20, 30, 40);
+  paint(VertexColours<Layer<TypeParam>>(input), quads);
+  for (const auto& v : quads.vert) EXPECT_EQ(v.cC(), vcg::Color4b(10, 20, 30, 40));
+}
+
+TYPED_TEST(PluginLayer, a_layer_without_faces_is_refused_with_what_it_is) {
+  Layer<TypeParam> points;
+  vcg::tri::Allocator<Layer<TypeParam>>::AddVertices(points, 7);
+  try {
+    require_faces(points, "scan");
+    FAIL() << "a point cloud was taken";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "scan: the layer has no faces (7 vertices: a point cloud, or lines only?); quadsimp needs a triangle "
+              "surface");
+  }
+  assign_quads(points, quad_grid(1, 1));
+  EXPECT_NO_THROW(require_faces(points, "scan"));
+}
+
+// A RichParameterList as simplify_params_of() reads it, which records the keys asked for.
+class Parameters {
+ public:
+  explicit Parameters(FilterId id) {
+    for (const ParamSpec& p : params_of(id)) values_[p.key] = p.value;
+  }
+  double& operator[](const std::string& key) { return values_.at(key); }
+  bool getBool(const std::string& key) const { return value(key) != 0; }
+  int getInt(const std::string& key) const { return int(value(key)); }
+  float getFloat(const std::string& key) const { return float(value(key)); }  // MeshLab 2020.09's Scalarm
+  std::set<std::string> read() const { return read_; }
+
+ private:
+  double value(const std::string& key) const {
+    read_.insert(key);
+    return values_.at(key);  // a key the filter does not declare: std::out_of_range
+  }
+  std::map<std::string, double> values_;
+  mutable std::set<std::string> read_;
+};
+
+TEST(PluginParams, the_dialogs_defaults_are_the_clis) {
+  Parameters list(kSimplify);
+  list["TargetFaceNum"] = 500;  // the dialog's default depends on the layer
+  const SimplifyParams p = simplify_params_of(list), cli;
+  EXPECT_EQ(p.target_faces, 500u);
+  EXPECT_EQ(p.adaptive, cli.adaptive);
+  EXPECT_EQ(p.auto_halt, cli.auto_halt);
+  EXPECT_FLOAT_EQ(float(p.tau), float(cli.tau));
+  EXPECT_FLOAT_EQ(float(p.halt_share), float(cli.halt_share));
+  EXPECT_FLOAT_EQ(float(p.max_aspect), float(cli.max_aspect));
+  EXPECT_FLOAT_EQ(float(p.reach), float(cli.reach));
+  EXPECT_EQ(p.m_factor, cli.m_factor);  // not a filter parameter
+  EXPECT_EQ(p.m_slack, cli.m_slack);
+  EXPECT_EQ(p.preserve_boundary, cli.preserve_boundary);
+  EXPECT_EQ(p.keep_tips, cli.keep_tips);
+  EXPECT_EQ(p.fast, cli.fast);
+  EXPECT_EQ(p.fit_to_input, cli.fit_to_input);
+  // Every parameter the dialog shows is read, and nothing else.
+  std::set<std::string> declared;
+  for (const ParamSpec& s : params_of(kSimplify)) declared.insert(s.key);
+  EXPECT_EQ(list.read(), declared);
+}
+
+TEST(PluginParams, each_parameter_reaches_its_own_field) {
+  Parameters list(kSimplify);
+  list["Adaptive"] = 1, list["TargetFaceNum"] = 321, list["HaltShare"] = 0.5, list["Tau"] = 0.125;
+  list["MaxAspect"] = 2, list["Reach"] = 0.25, list["PreserveBoundary"] = 1, list["KeepTips"] = 1;
+  list["Fast"] = 1, list["FitToInput"] = 1;
+  SimplifyParams p = simplify_params_of(list);
+  EXPECT_TRUE(p.adaptive);
+  EXPECT_FALSE(p.auto_halt);
+  EXPECT_EQ(p.target_faces, 321u);
+  EXPECT_EQ(p.halt_share, 0.5);
+  EXPECT_EQ(p.tau, 0.125);
+  EXPECT_EQ(p.max_aspect, 2);
+  EXPECT_EQ(p.reach, 0.25);
+  EXPECT_TRUE(p.preserve_boundary && p.keep_tips && p.fast && p.fit_to_input);
+  // Automatic halting leaves the target out (the dialog always has one).
+  list["AutoHalt"] = 1;
+  p = simplify_params_of(list);
+  EXPECT_TRUE(p.auto_halt);
+  EXPECT_EQ(p.target_faces, 0u);
+}
+
+TEST(PluginParams, combinations_the_run_cannot_take_are_refused) {
+  Parameters list(kSimplify);
+  list["TargetFaceNum"] = -3;  // no target in uniform mode
+  EXPECT_THROW(simplify_params_of(list), std::invalid_argument);
+  list["TargetFaceNum"] = 100, list["AutoHalt"] = 1;  // automatic halting without the adaptive mode
+  EXPECT_THROW(simplify_params_of(list), std::invalid_argument);
+  list["AutoHalt"] = 0, list["MaxAspect"] = 0.5;
+  EXPECT_THROW(simplify_params_of(list), std::invalid_argument);
+}
+
+TEST(PluginSpecs, names_are_unique_and_defaults_in_range) {
+  std::set<std::string> names, python_names;
+  for (const FilterSpec& f : filter_specs()) {
+    EXPECT_TRUE(names.insert(f.name).second) << f.name;
+    EXPECT_TRUE(python_names.insert(f.python_name).second) << f.python_name;
+    EXPECT_EQ(&filter_spec(f.id), &f);
+    std::set<std::string> keys;
+    for (const ParamSpec& p : params_of(f.id)) {
+      EXPECT_TRUE(keys.insert(p.key).second) << f.name << ": " << p.key;
+      EXPECT_LE(p.min, p.max) << p.key;
+      if (p.kind == ParamKind::Float || p.kind == ParamKind::Bool) {
+        EXPECT_TRUE(p.value >= p.min && p.value <= p.max) << f.name << ": " << p.key;
+      }
+      if (p.kind == ParamKind::Bool) {
+        EXPECT_TRUE(p.value == 0 || p.value == 1) << p.key;
+      }
+    }
+  }
+  EXPECT_EQ(names.size(), 4u);
+  EXPECT_THROW(filter_spec(FilterId(99)), std::out_of_range);
+  EXPECT_EQ(default_target_faces(69'451), 3'472);
+  EXPECT_EQ(default_target_faces(20), 6);
+}
+
+// vcg::CallBackPos's shape: the percentage and a message.
+std::vector<int> percents_seen;
+bool record(const int percent, const char*) {
+  percents_seen.push_back(percent);
+  return true;
+}
+
+TEST(PluginProgress, each_percent_is_reported_once) {
+  EXPECT_FALSE(progress_of<vcg::CallBackPos>(nullptr));
+  percents_seen.clear();
+  const ProgressFn progress = progress_of(&record);
+  for (float f : {0.f, 0.001f, 0.004f, 0.01f, 0.011f, 0.5f, 0.5f, 1.f}) EXPECT_TRUE(progress(f, "stage"));
+  EXPECT_EQ(percents_seen, (std::vector<int>{0, 1, 50, 100}));
+}
+
+// A sphere as a layer holds it with a seam: the vertices of one meridian twice.
+MeshFile sphere_with_seam() {
+  const TriMesh s = tri_sphere(12, 16);
+  MeshFile f{s.positions, s.faces, {}};
+  for (auto& t : f.triangles) {
+    bool east = false;
+    for (Index v : t) east |= s.positions[v].y() > 1e-9;
+    for (Index& v : t) {
+      if (!east || std::abs(s.positions[v].y()) > 1e-9 || s.positions[v].x() <= 0) continue;
+      f.positions.push_back(s.positions[v]);  // a copy per use is enough for the test
+      v = Index(f.positions.size() - 1);
+    }
+  }
+  return f;
+}
+
+TEST(PluginRunner, fitmaps_reach_every_vertex_of_the_layer_seam_included) {
+  const MeshFile layer = sphere_with_seam();
+  ASSERT_GT(layer.positions.size(), tri_sphere(12, 16).positions.size());
+  Outcome o;
+  const Fitmaps f = run_fitmaps(layer, "ball", 0.05, {}, o);
+  ASSERT_EQ(f.s.size(), layer.positions.size());
+  ASSERT_EQ(f.m.size(), layer.positions.size());
+  // The seam's copies read the fitmaps of the vertex cleaning merged them into.
+  TriMesh clean_sphere = tri_sphere(12, 16);
+  const Fitmaps reference = compute_fitmaps(clean_sphere, {});
+  for (std::size_t v = 0; v < layer.positions.size(); ++v) {
+    const auto& all = clean_sphere.positions;
+    const auto it = std::find(all.begin(), all.end(), layer.positions[v]);
+    ASSERT_NE(it, all.end());
+    const std::size_t same = std::size_t(it - all.begin());
+    EXPECT_NEAR(f.s[v], reference.s[same], 1e-4 * reference.s[same]) << v;
+    EXPECT_NEAR(f.m[v], reference.m[same], 1e-4 * reference.m[same]) << v;
+  }
+  ASSERT_FALSE(o.log.empty());
+  EXPECT_EQ(o.log.back(), "ball: fitmaps of " + std::to_string(layer.positions.size()) + " vertices (tau 0.05)");
+}
+
+TEST(PluginRunner, quality_measures_quads_and_refuses_anything_else) {
+  const QuadMesh q = quad_grid(6, 6);
+  MeshFile quads{q.positions(), {}, q.quads()};
+  for (Vec3& p : quads.positions) p /= 6;  // tri_grid's unit square
+  const TriMesh tri = tri_grid(6, 6);
+  const MeshFile reference{tri.positions, tri.faces, {}};
+  Outcome o;
+  run_quality(quads, "quads", reference, "input", 5000, o);
+  EXPECT_EQ(o.values.at("faces"), 36);
+  EXPECT_EQ(o.values.at("vertices"), 49);
+  EXPECT_NEAR(o.values.at("regular_percent"), 100.0 * 45 / 49, 1e-9);  // all but the four corners
+  EXPECT_LT(o.values.at("rms_e3"), 1e-3);
+  EXPECT_EQ(o.values.at("projectability"), 1);
+  ASSERT_EQ(o.log.size(), 2u);
+  const std::string first = "quads: 36 quads, max valence 4, regular 91.8%, homeometry 1.000 .. 1.000";
+  EXPECT_EQ(o.log[0].rfind(first, 0), 0u) << o.log[0];
+  EXPECT_EQ(o.log[1].rfind("distance to input (x1e-3 of its diagonal)", 0), 0u) << o.log[1];
+
+  try {
+    run_quality(reference, "tris", reference, "input", 5000, o);
+    FAIL() << "triangles were measured as quads";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()), "tris: not a pure quad mesh (" + std::to_string(tri.faces.size()) +
+                                         " triangles that do not pair up through faux edges)");
+  }
+  // Quads that are no surface are named too: three on one edge.
+  const MeshFile fan{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {1, -1, 0}, {0, -1, 0}, {0, 0, 1}, {1, 0, 1}},
+                     {},
+                     {{0, 1, 2, 3}, {1, 0, 5, 4}, {0, 1, 7, 6}}};
+  try {
+    run_quality(fan, "fan", reference, "input", 5000, o);
+    FAIL() << "a non-manifold edge was measured";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("fan: ", 0), 0u) << e.what();
+  }
+}
+
+TEST(PluginRunner, simplification_logs_what_it_did_and_matches_the_pipeline) {
+  const TriMesh t = tri_sphere(20, 30);
+  const MeshFile layer{t.positions, t.faces, {}};
+  SimplifyParams params;
+  params.target_faces = 120;
+  Outcome o;
+  const QuadMesh q = run_simplification(layer, "ball", params, {}, o);
+  EXPECT_LE(q.n_faces(), 120u);
+  EXPECT_EQ(o.values.at("faces"), q.n_faces());
+  ASSERT_GE(o.log.size(), 2u);
+  EXPECT_EQ(o.log[0].rfind("ball: " + std::to_string(t.faces.size()) + " triangles paired into ", 0), 0u)
+      << o.log[0];
+  EXPECT_NE(o.log[1].find(" -> " + std::to_string(q.n_faces()) + " quads in "), std::string::npos) << o.log[1];
+  // The CLI's path: the same quads.
+  Input in = prepare_input(layer, "ball");
+  const ReferenceSurface ref(std::move(in.reference));
+  simplify_input(in, ref, params);
+  EXPECT_EQ(quads_of(in.quads), quads_of(q));
+
+  // A target under what the mesh can reach is said in the log.
+  params.target_faces = 1;
+  Outcome grid_log;
+  const TriMesh holey = with_holes(tri_grid(30, 30), 0.03, 5);
+  run_simplification({holey.positions, holey.faces, {}}, "grid", params, {}, grid_log);
+  const bool said = std::any_of(grid_log.log.begin(), grid_log.log.end(),
+                                [](const std::string& l) { return l.find("target") != std::string::npos; });
+  EXPECT_TRUE(said) << ::testing::PrintToString(grid_log.log);
+
+  // Conversion alone: the layer's triangles as quads, and how many paired.
+  Outcome c;
+  const QuadMesh converted = run_conversion(layer, "ball", c);
+  EXPECT_EQ(c.values.at("faces"), converted.n_faces());
+  EXPECT_GT(c.values.at("pairing_rate"), 0.9);
+  EXPECT_NO_THROW(validate(converted));
+}
+
+}  // namespace
