@@ -757,6 +757,26 @@ TEST(Simplify, an_inputs_own_shared_diagonals_pass_the_invariant_checks) {
   EXPECT_TRUE(std::includes(shared.begin(), shared.end(), after.begin(), after.end()));
 }
 
+// The checks themselves: the tests above rely on them to throw. A border is off M0's
+// border when the reference surface runs on past it, as it would after a step left a
+// border vertex inside.
+TEST(Simplify, the_invariant_checks_catch_a_border_off_the_inputs_border) {
+  QuadMesh m = quad_grid(8, 8);
+  for (Index v = 0; v < m.vertex_capacity(); ++v) m.position(v) = m.position(v) / 16 + Vec3(0.25, 0.25, 0);
+  const ReferenceSurface ref(tri_grid(8, 8));  // the unit square; the quads cover its middle
+  SimplifyOptions opt;
+  opt.target_faces = 20;
+  QuadMesh unchecked = m;
+  EXPECT_NO_THROW(simplify(unchecked, ref, opt));
+  opt.check_invariants = true;
+  try {
+    simplify(m, ref, opt);
+    FAIL() << "a border inside the input passed the checks";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("is off M0's border by "), std::string::npos) << e.what();
+  }
+}
+
 TEST(Simplify, a_coarse_piece_leaves_the_share_it_cannot_use_to_the_others) {
   // Two spheres of one size, one meshed coarsely (176 quads) and one finely, and debris
   // that holds the run above the target. By area the spheres' shares of 600 are about 300
