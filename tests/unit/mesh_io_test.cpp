@@ -576,6 +576,17 @@ TEST_F(MeshIo, ply_variants_are_read) {
   EXPECT_EQ(small.positions[0], Vec3(-128, 0, 0));
   EXPECT_EQ(small.positions[1], Vec3(127, -32768, 0));
   EXPECT_EQ(small.positions[2], Vec3(0, 32767, -1));
+  std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty char x\nproperty short y\n"
+                       "property char z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const auto& [x, y, z] : {std::array<int, 3>{-128, 0, 0}, {127, -32768, 0}, {0, 32767, -1}}) {
+    const std::int8_t cx = std::int8_t(x), cz = std::int8_t(z);
+    const std::int16_t sy = std::int16_t(y);  // this host is little-endian
+    binary.append(reinterpret_cast<const char*>(&cx), 1).append(reinterpret_cast<const char*>(&sy), 2);
+    binary.append(reinterpret_cast<const char*>(&cz), 1);
+  }
+  const std::int32_t corners[] = {0, 1, 2};
+  binary.append(1, char(3)).append(reinterpret_cast<const char*>(corners), sizeof corners);
+  EXPECT_EQ(read_mesh(write("small_binary.ply", binary)).positions, small.positions);
 
   // Triangle strips (old Stanford files), which vcglib reads: two strips of a 3 x 2
   // grid of squares, -1 between them; each square as two triangles.
@@ -636,6 +647,17 @@ TEST_F(MeshIo, writes_are_atomic_and_refuse_unknown_formats) {
   EXPECT_THROW(write_quad_mesh(path("out.stl"), cube()), InvalidInput);
   EXPECT_THROW(write_quad_mesh(path("no/such/dir/out.ply"), cube()), InvalidInput);
   for (const auto& e : fs::directory_iterator(dir_)) ADD_FAILURE() << "left behind: " << e.path();
+  // Written, but not renamed onto a folder of that name: the written file goes too.
+  fs::create_directories(path("taken.ply/inside"));
+  try {
+    write_quad_mesh(path("taken.ply"), cube());
+    ADD_FAILURE() << "written over a folder";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("taken.ply: cannot be written ("), std::string::npos) << e.what();
+  }
+  for (const auto& e : fs::directory_iterator(dir_))
+    if (e.path().filename() != "taken.ply") ADD_FAILURE() << "left behind: " << e.path();
+  fs::remove_all(path("taken.ply"));
   write_quad_mesh(path("cube.ply"), cube());
   std::size_t files = 0;
   for (const auto& e : fs::directory_iterator(dir_)) files += e.is_regular_file();
