@@ -27,15 +27,23 @@ struct CliRun {
   std::string out;  // stdout and stderr together
 };
 
-CliRun run(const std::string& args) {
+CliRun capture(const std::string& command) {
   CliRun r{-1, {}};
-  FILE* p = ::popen((fixtures::cli_path() + " " + args + " 2>&1").c_str(), "r");
+  FILE* p = ::popen(command.c_str(), "r");
   if (!p) return r;
   char buf[4096];
   while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) r.out.append(buf, n);
   const int status = ::pclose(p);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+CliRun run(const std::string& args) { return capture(fixtures::cli_path() + " " + args + " 2>&1"); }
+
+// The same on a terminal: script(1) (util-linux, on every Debian) gives the command a
+// pseudo-terminal and copies what it writes there.
+CliRun run_on_terminal(const std::string& args) {
+  return capture("script -qec '" + fixtures::cli_path() + " " + args + "' /dev/null");
 }
 
 // One per-vertex property of a binary little-endian PLY file, as floats (empty if the
@@ -235,6 +243,32 @@ TEST_F(Cli, simplify_stats_and_fitmap) {
   EXPECT_EQ(run("simplify " + input_ + " " + out).code, 2);
   EXPECT_EQ(run("simplify " + input_ + " " + out + " --adaptive --auto-halt --faces 10").code, 2);
   EXPECT_EQ(run("simplify " + input_ + " " + out + " --adaptive --auto-halt -q").code, 0);
+}
+
+// A terminal sees each stage's bar, redrawn in place once per percent; a pipe (a log
+// file, the tests above) sees none, and neither does --quiet.
+TEST_F(Cli, a_terminal_gets_a_progress_bar_and_a_pipe_none) {
+  if (std::system("command -v script >/dev/null 2>&1") != 0) GTEST_SKIP() << "script(1) not found";
+  const std::string args = "simplify " + input_ + " " + p("s.ply") + " --adaptive --faces 60";
+  CliRun r = run_on_terminal(args);
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const char* stage : {"\rfitmaps    [", "\rsimplify   ["}) EXPECT_NE(r.out.find(stage), std::string::npos) << r.out;
+  EXPECT_EQ(run(args).out.find('\r'), std::string::npos);
+  EXPECT_EQ(run_on_terminal(args + " -q").out.find('['), std::string::npos);
+  // The loop reports every 256 collapses: 28,000 of them are more reports than percents.
+  write_tri_mesh_ply(p("big.ply"), fixtures::tri_sphere(160, 180));
+  r = run_on_terminal("simplify " + p("big.ply") + " " + p("s.ply") + " --faces 100");
+  ASSERT_EQ(r.code, 0) << r.out;
+  // The simplification's percentages, in the order drawn: each once, rising to 100.
+  std::vector<int> drawn;
+  for (std::size_t at = r.out.find("\rsimplify   ["); at != std::string::npos;
+       at = r.out.find("\rsimplify   [", at + 1))
+    drawn.push_back(std::stoi(r.out.substr(r.out.find('%', at) - 3, 3)));
+  ASSERT_FALSE(drawn.empty());
+  EXPECT_TRUE(std::adjacent_find(drawn.begin(), drawn.end(), std::greater_equal<int>()) == drawn.end())
+      << ::testing::PrintToString(drawn);
+  EXPECT_EQ(drawn.back(), 100);
+  EXPECT_NE(r.out.find("[########################################] 100%"), std::string::npos) << r.out;
 }
 
 TEST_F(Cli, a_target_the_mesh_cannot_reach_is_reported) {
