@@ -252,7 +252,8 @@ TEST_F(Cli, a_terminal_gets_a_progress_bar_and_a_pipe_none) {
   const std::string args = "simplify " + input_ + " " + p("s.ply") + " --adaptive --faces 60";
   CliRun r = run_on_terminal(args);
   ASSERT_EQ(r.code, 0) << r.out;
-  for (const char* stage : {"\rfitmaps    [", "\rsimplify   ["}) EXPECT_NE(r.out.find(stage), std::string::npos) << r.out;
+  for (const char* stage : {"\rfitmaps    [", "\rsimplify   ["})
+    EXPECT_NE(r.out.find(stage), std::string::npos) << r.out;
   EXPECT_EQ(run(args).out.find('\r'), std::string::npos);
   EXPECT_EQ(run_on_terminal(args + " -q").out.find('['), std::string::npos);
   // The loop reports every 256 collapses: 28,000 of them are more reports than percents.
