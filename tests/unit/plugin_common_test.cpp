@@ -138,7 +138,6 @@ TYPED_TEST(PluginLayer, a_doublet_is_two_pairs_and_no_triangle_twice) {
 TYPED_TEST(PluginLayer, fitmaps_go_to_the_live_vertices_in_order) {
   Layer<TypeParam> layer;
   assign_quads(layer, quad_grid(1, 1));
-  layer.vert.EnableMark();  // an optional component: storing must not disturb the others
   vcg::tri::Allocator<Layer<TypeParam>>::DeleteVertex(layer, layer.vert[1]);
   const Fitmaps f{{0.5f, 1.5f, 2.5f}, {3.f, 4.f, 5.f}};
   store_fitmaps(layer, f);
@@ -153,8 +152,8 @@ TYPED_TEST(PluginLayer, fitmaps_go_to_the_live_vertices_in_order) {
 }
 
 TYPED_TEST(PluginLayer, quads_take_the_colour_at_their_closest_point) {
-  // A strip from x = 0 (red) to x = 1 (blue); quads above it at x = 0.25 and 1 (and
-  // beyond, past its end).
+  // A unit square, red along x = 0 and blue along x = 1, and a quad above it with corners
+  // over x = 0.25 and x = 1 and one past its side.
   Layer<TypeParam> input;
   assign_quads(input, quad_grid(1, 1));
   for (auto& v : input.vert) v.C() = v.cP()[0] < 0.5 ? vcg::Color4b(255, 0, 0, 255) : vcg::Color4b(0, 0, 255, 255);
