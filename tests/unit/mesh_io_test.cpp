@@ -473,6 +473,14 @@ TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
                 "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid a\n"},
       {"b.ply", binary_ply},
       {"b.stl", stl},
+      // Old Stanford elements, read by vcglib: triangle strips and a range grid.
+      {"t.ply", "ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\n"
+                "element tristrips 1\nproperty list int int vertex_indices\nend_header\n" + corners +
+                "8 0 1 3 2 -1 1 5 6\n"},
+      {"g.ply", "ply\nformat ascii 1.0\nobj_info num_cols 4\nobj_info num_rows 2\nelement vertex 7\n"
+                "property float x\nproperty float y\nproperty float z\nelement range_grid 8\n"
+                "property list uchar int vertex_indices\nend_header\n" + corners +
+                "1 0\n1 1\n1 5\n0\n1 3\n1 2\n2 6 4\n1 4\n"},
   };
   const std::vector<std::string> nasty = {"-1", "0", "7", "100000000", "-100000000", "2147483647", "-2147483648",
                                           "4294967296", "nan", "inf", "1e308", "x", "", "#", "/", "3", "5", "255",
@@ -484,7 +492,7 @@ TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
     for (const auto& [name, seed] : seeds) {
       std::string text = seed;
       const bool binary = name[0] == 'b';
-      for (std::size_t k = 0, edits = 1 + pick(4); k < edits; ++k) {
+      for (std::size_t k = 0, edits = 1 + pick(4); k < edits && !text.empty(); ++k) {
         const std::size_t op = pick(6);
         if (binary || op == 5) {  // a byte changed, dropped or added
           const std::size_t at = pick(text.size());
@@ -594,6 +602,20 @@ TEST_F(MeshIo, ply_variants_are_read) {
                        "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n";
   for (int y = 0; y < 3; ++y)
     for (int x = 0; x < 4; ++x) strips += std::to_string(x) + " " + std::to_string(y) + " 0\n";
+  // Corners out of range are refused, and a restart (-1) in second place leaves a run too
+  // short for a triangle: vcglib, which read these files before, checked only each
+  // triangle's first corner and looked the others up unchecked (a crash on all three).
+  for (const char* bad : {"9 4 0 5 1 6 2 7 3 100000000\n", "9 4 0 5 1 6 2 7 100000000 3\n"}) {
+    try {
+      read_mesh(write("bad_strip.ply", strips + bad));
+      ADD_FAILURE() << "read: " << bad;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("bad_strip.ply: unreadable PLY (a face corner 100000000 names no vertex"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_EQ(read_mesh(write("short_run.ply", strips + "5 4 -1 0 5 1\n")).triangles.size(), 1u);
   strips += "17 4 0 5 1 6 2 7 3 -1 8 4 9 5 10 6 11 7\n";
   const MeshFile st = read_mesh(write("strips.ply", strips));
   EXPECT_EQ(st.positions.size(), 12u);
@@ -606,6 +628,32 @@ TEST_F(MeshIo, ply_variants_are_read) {
     normal += n;
   }
   EXPECT_NEAR(std::abs(normal.z()), 12.0, 1e-9);  // every triangle facing the same way
+
+  // Range grids (old Stanford scans): a grid of 3 x 2 points, each entry listing the vertex
+  // at that point (the first of its list) or none; cells of four points are quads.
+  const auto range_grid = [](const std::string& entries) {
+    std::string g = "ply\nformat ascii 1.0\nobj_info num_cols 3\nobj_info num_rows 2\nelement vertex 6\n"
+                    "property float x\nproperty float y\nproperty float z\nelement range_grid 6\n"
+                    "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n";
+    return g + entries;
+  };
+  const MeshFile full = read_mesh(write("grid.ply", range_grid("1 0\n1 1\n1 2\n1 3\n1 4\n1 5\n")));
+  EXPECT_EQ(full.quads.size(), 2u);
+  EXPECT_TRUE(full.triangles.empty());
+  const MeshFile gap = read_mesh(write("gap.ply", range_grid("1 0\n1 1\n1 2\n1 3\n1 4\n0\n")));
+  EXPECT_EQ(gap.quads.size(), 1u);
+  EXPECT_EQ(gap.triangles.size(), 1u);
+  // An entry listing more than five vertices overran vcglib's array of five on the stack,
+  // and an index out of range was taken as a vertex.
+  std::string forty = "40";
+  for (int k = 0; k < 40; ++k) forty += " 5";
+  EXPECT_EQ(read_mesh(write("long.ply", range_grid("1 0\n1 1\n1 2\n1 3\n1 4\n" + forty + "\n"))).quads.size(), 2u);
+  try {
+    read_mesh(write("bad_grid.ply", range_grid("1 0\n1 1\n1 2\n1 3\n1 4\n1 100000000\n")));
+    ADD_FAILURE() << "an index out of range was read";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("bad_grid.ply: unreadable PLY ("), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(MeshIo, off_variants_are_read) {

@@ -1,7 +1,7 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 //
-// The only file that sees vcglib's I/O: it reads STL and old Stanford PLY files (triangle
-// strips, range grids), and writes PLY and OFF. PLY, OBJ and OFF are read by
+// The only file that sees vcglib's I/O: it reads STL, and writes PLY and OFF. PLY (the
+// old Stanford files' triangle strips and range grids too), OBJ and OFF are read by
 // read_ply.cpp, read_obj.cpp and read_off.cpp (why is said there). Every reader gives
 // triangles with "faux" flags on the inner edges of polygons, the way vcglib and MeshLab
 // store quads (MeshLab writes the flags to PLY with -m ff), and the triangles joined by
@@ -25,7 +25,6 @@
 #include <vcg/complex/complex.h>
 #include <wrap/io_trimesh/export_off.h>
 #include <wrap/io_trimesh/export_ply.h>
-#include <wrap/io_trimesh/import_ply.h>
 #include <wrap/io_trimesh/import_stl.h>
 
 #include "quadsimp/io/text_readers.h"
@@ -72,11 +71,7 @@ void check_readable(const std::string& path) {
 
 void load_vcg(const std::string& path, TMesh& m) {
   const std::string ext = extension_of(path);
-  if (ext == "ply") {  // old Stanford files only; read_ply() has checked the header's counts
-    int mask = 0;
-    const int err = vcg::tri::io::ImporterPLY<TMesh>::Open(m, path.c_str(), mask);
-    if (err != 0) fail(path, std::string("unreadable PLY (") + vcg::tri::io::ImporterPLY<TMesh>::ErrorMsg(err) + ")");
-  } else if (ext == "stl") {
+  if (ext == "stl") {
     int mask = 0;
     const int err = vcg::tri::io::ImporterSTL<TMesh>::Open(m, path.c_str(), mask);
     if (err != 0) fail(path, std::string("unreadable STL (") + vcg::tri::io::ImporterSTL<TMesh>::ErrorMsg(err) + ")");
@@ -221,8 +216,8 @@ MeshFile read_mesh(const std::string& path) {
     file = read_off(path);
   } else if (ext == "obj") {
     file = read_obj(path);
-  } else if (auto ply = ext == "ply" ? read_ply(path) : std::nullopt) {
-    file = std::move(*ply);
+  } else if (ext == "ply") {
+    file = read_ply(path);
   } else {
     TMesh m;
     load_vcg(path, m);

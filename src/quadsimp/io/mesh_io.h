@@ -11,8 +11,8 @@
 
 namespace qs {
 
-//! Reads PLY (ASCII or binary), OBJ or OFF with our readers, STL and old Stanford PLY
-//! files (triangle strips, range grids) through vcglib's importers. Quads come
+//! Reads PLY (ASCII or binary; old Stanford files' triangle strips and range grids too),
+//! OBJ or OFF with our readers, STL through vcglib's importer. Quads come
 //! back as quads whether the file has quad polygons or MeshLab's triangle pairs with
 //! faux-edge face flags (PLY saved with per-face flags); other polygons as triangles.
 //! Vertex colours come back too (MeshFile::colours): PLY's, COFF's, and OBJ's

@@ -4,9 +4,13 @@
 // buffer of 512 with a one-byte count, so a polygon of more than 255 corners was cut
 // short without a word and a longer list overran the buffer (a crash), and it allocated
 // every element a header counts before reading one (300,000,000 vertices in a 188-byte
-// file took 9 GB). Vertex x, y, z and the faces' corner lists and MeshLab's face flags
-// (whose faux bits mark the inner edges of quads stored as triangle pairs) are read;
-// other properties and elements are skipped.
+// file took 9 GB). Its readers of the old Stanford elements were worse: a triangle
+// strip's second and third corners were looked up unchecked and its lists never freed,
+// and a range grid's entry of more than five indices overran an array on the stack.
+// Vertex x, y, z and the faces' corner lists and MeshLab's face flags (whose faux bits
+// mark the inner edges of quads stored as triangle pairs) are read, and those old
+// elements, "tristrips" and "range_grid", as vcglib turned them into faces; other
+// properties and elements are skipped.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -14,7 +18,6 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
-#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -145,6 +148,7 @@ struct Header {
   std::vector<Element> elements;
   Values::Format format = Values::Format::ascii;
   std::size_t data = 0;
+  long long grid_cols = -1, grid_rows = -1;  // a range grid's size ("obj_info num_cols 640")
 };
 
 Header read_header(const std::string& path, const std::string& file) {
@@ -164,7 +168,13 @@ Header read_header(const std::string& path, const std::string& file) {
       if (f.size() != 1 || !magic(f[0])) unreadable(path, "the file does not start with 'ply'");
       continue;
     }
-    if (f.empty() || f[0] == "comment" || f[0] == "obj_info") continue;
+    if (!f.empty() && (f[0] == "comment" || f[0] == "obj_info")) {
+      if (f.size() == 3 && (f[1] == "num_cols" || f[1] == "num_rows"))
+        if (!parse_number(f[2], f[1] == "num_cols" ? h.grid_cols : h.grid_rows))
+          unreadable(path, "a range grid's " + std::string(f[1]) + " that is not a whole number");
+      continue;
+    }
+    if (f.empty()) continue;
     if (f[0] == "end_header") {
       ended = true;
     } else if (f[0] == "format" && f.size() >= 2) {
@@ -196,7 +206,7 @@ Header read_header(const std::string& path, const std::string& file) {
 
   // No count may pass what the data could hold (a value takes its size in binary, a
   // digit and a separator in ASCII, where the last separator may be missing), so nothing
-  // is reserved for more, here or in vcglib, which reads the old files.
+  // is reserved for more.
   const std::size_t bytes = file.size() - h.data;
   const bool ascii = h.format == Values::Format::ascii;
   for (const Element& e : h.elements) {
@@ -211,13 +221,11 @@ Header read_header(const std::string& path, const std::string& file) {
 
 }  // namespace
 
-std::optional<MeshFile> read_ply(const std::string& path) {
+MeshFile read_ply(const std::string& path) {
   const auto fail = [&path](const std::string& why) { unreadable(path, why); };
   std::ifstream in(path, std::ios::binary);
   const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const Header header = read_header(path, data);
-  for (const Element& e : header.elements)
-    if (e.name == "tristrips" || e.name == "range_grid") return std::nullopt;
 
   Values values(std::string_view(data).substr(header.data), header.format);
   std::vector<Vec3> positions;
@@ -228,18 +236,31 @@ std::optional<MeshFile> read_ply(const std::string& path) {
   std::vector<Index> corners;
   std::vector<std::size_t> polygon_start{0};
   std::vector<std::uint8_t> flag_faux;  // the faces' faux bits from their flags
+  const auto add_triangle = [&](long long a, long long b, long long c, std::uint8_t faux_bits = 0) {
+    corners.insert(corners.end(), {Index(a), Index(b), Index(c)});
+    polygon_start.push_back(corners.size());
+    flag_faux.push_back(faux_bits);
+  };
+  std::vector<long long> list;  // a strip's or a grid entry's indices (-1: none)
+  std::vector<long long> grid;  // a range grid's vertex at each point, row by row (-1: none)
   bool have_vertices = false, have_faces = false;
   for (const Element& e : header.elements) {
     const bool vertex = e.name == "vertex", face = e.name == "face";
+    const bool strips = e.name == "tristrips", range = e.name == "range_grid";
+    if (range && (header.grid_cols < 0 || header.grid_rows < 0 || !grid.empty() ||
+                  double(header.grid_cols) * double(header.grid_rows) != double(e.count)))
+      fail("a range grid of " + std::to_string(e.count) + " entries without num_cols and num_rows that many");
     if ((vertex && have_vertices) || (face && have_faces)) fail("two " + detail::quoted(e.name) + " elements");
     const int xyz[3] = {e.find("x"), e.find("y"), e.find("z")};
     // Colours as MeshLab writes them (bytes; alpha optional), or as fractions in floats.
     const int rgba[4] = {e.find("red"), e.find("green"), e.find("blue"), e.find("alpha")};
     const bool coloured = vertex && rgba[0] >= 0 && rgba[1] >= 0 && rgba[2] >= 0;
     if (vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)) fail("vertices without x, y and z");
-    int list = face ? e.find("vertex_indices") : -1;
-    if (face && list < 0) list = e.find("vertex_index");
-    if (face && (list < 0 || !e.properties[std::size_t(list)].list)) fail("faces without a list of vertex indices");
+    const bool indexed = face || strips || range;
+    int list_at = indexed ? e.find("vertex_indices") : -1;
+    if (face && list_at < 0) list_at = e.find("vertex_index");
+    if (indexed && (list_at < 0 || !e.properties[std::size_t(list_at)].list))
+      fail((face ? std::string("faces") : detail::quoted(e.name)) + " without a list of vertex indices");
     const int flags = face ? e.find("flags") : -1;
     have_vertices |= vertex;
     have_faces |= face;
@@ -271,14 +292,35 @@ std::optional<MeshFile> read_ply(const std::string& path) {
         double n;
         if (!values.next(prop.count, n) || n < 0 || n > double(values.left()))
           fail("a list that is not there, or longer than the file, in " + detail::quoted(e.name) + " " + std::to_string(i));
+        if (int(k) == list_at) list.clear();
         for (long long j = 0; j < static_cast<long long>(n); ++j) {
           if (!values.next(prop.value, x)) fail("its data ends, or is not a number, in " + detail::quoted(e.name) + " " + std::to_string(i));
-          if (face && int(k) == list) {
-            if (x < 0 || x > double(std::numeric_limits<Index>::max()))
-              fail("face " + std::to_string(i) + ": corner " + std::to_string(static_cast<long long>(x)) + " names no vertex");
-            corners.push_back(Index(x));
-          }
+          if (int(k) != list_at) continue;
+          // Strips restart after a -1; every other index must name a vertex (checked below).
+          if (!(x >= (strips ? -1 : 0) && x <= double(std::numeric_limits<Index>::max())))
+            fail(e.name + " " + std::to_string(i) + ": corner " + std::to_string(static_cast<long long>(x)) +
+                 " names no vertex");
+          if (face) corners.push_back(Index(x));
+          else list.push_back(static_cast<long long>(x));
         }
+      }
+      if (strips) {
+        // Each run between restarts: triangle k of a run is corners k, k+1, k+2, every
+        // other one turned (vcglib's order, so that all face the same way).
+        std::size_t run = 0;
+        for (std::size_t k = 0; k + 2 < list.size(); ++k) {
+          if (list[k] < 0 || list[k + 1] < 0 || list[k + 2] < 0) {
+            if (list[k] < 0) run = k + 1;
+            continue;
+          }
+          if ((k - run) % 2) add_triangle(list[k + 1], list[k], list[k + 2]);
+          else add_triangle(list[k], list[k + 1], list[k + 2]);
+        }
+        continue;
+      }
+      if (range) {
+        grid.push_back(list.empty() ? -1 : list[0]);
+        continue;
       }
       if (vertex) positions.push_back(p);
       if (coloured) colours.push_back(colour);
@@ -294,6 +336,22 @@ std::optional<MeshFile> read_ply(const std::string& path) {
       }
     }
   }
+  // A range grid's cells: two triangles joined by a faux diagonal (a quad) where all four
+  // points have a vertex, else a triangle on three: vcglib's SparseFaceGrid(), the same
+  // triangles in the same order.
+  for (long long r = 0; r + 1 < header.grid_rows && !grid.empty(); ++r)
+    for (long long c = 0; c + 1 < header.grid_cols; ++c) {
+      const long long v0 = grid[r * header.grid_cols + c], v1 = grid[r * header.grid_cols + c + 1];
+      const long long v2 = grid[(r + 1) * header.grid_cols + c], v3 = grid[(r + 1) * header.grid_cols + c + 1];
+      const std::uint8_t quad = v0 >= 0 && v1 >= 0 && v2 >= 0 && v3 >= 0 ? 4 : 0;  // edge 2: v0-v3
+      if (v0 >= 0 && v3 >= 0 && (v1 >= 0 || v2 >= 0)) {
+        if (v2 >= 0) add_triangle(v3, v2, v0, quad);
+        if (v1 >= 0) add_triangle(v0, v1, v3, quad);
+      } else if (v1 >= 0 && v2 >= 0) {
+        if (v0 >= 0) add_triangle(v2, v0, v1);
+        if (v3 >= 0) add_triangle(v1, v3, v2);
+      }
+    }
   for (const Index c : corners)
     if (c >= positions.size())
       fail("a face corner " + std::to_string(c) + " names no vertex (the file has " + std::to_string(positions.size()) + ")");

@@ -1,7 +1,6 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
-#include <optional>
 #include <string>
 
 #include "quadsimp/mesh/mesh_file.h"
@@ -20,8 +19,8 @@ MeshFile read_off(const std::string& path);
 //! quads); normals, texture coordinates, groups and materials ignored.
 MeshFile read_obj(const std::string& path);
 
-//! PLY, ASCII or binary: vertex x, y, z, the faces' corner lists and flags. nullopt for
-//! old Stanford files with triangle strips or range grids, which vcglib reads.
-std::optional<MeshFile> read_ply(const std::string& path);
+//! PLY, ASCII or binary: vertex x, y, z, the faces' corner lists and flags, and old
+//! Stanford files' triangle strips and range grids (a quad per cell of four points).
+MeshFile read_ply(const std::string& path);
 
 }  // namespace qs
