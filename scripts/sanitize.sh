@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The unit and CLI tests (qs_tests) under AddressSanitizer and UndefinedBehaviorSanitizer:
 # builds build-asan/ (Debug at -O1, the CLI the tests run included) and runs the tests,
-# which fail on the first report. About 35 minutes on 2 cores, most of it the tests.
+# which fail on the first report. 25 to 35 minutes on 2 cores, most of it the tests.
 # Arguments go to the test binary (e.g. --gtest_filter='Simplify.*'). Needs
 # scripts/setup.sh's packages only. The MeshLab plugins are not built.
 set -euo pipefail
