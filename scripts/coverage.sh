@@ -28,7 +28,8 @@ find "$build/src" "$build/tests" -name '*.gcda' -not -path '*/.deps/*' -exec gco
 # Per-object runs of gcov each write a source's file; a source compiled once has one, and
 # plugin/common's headers are compiled into qs_tests alone.
 files() { ls *'#src#'*.cpp.gcov *'#plugin#common#'*.gcov 2>/dev/null || true; }
-name() { local f=${1#*#"${here##*/}"#}; f=${f//#//}; echo "${f%.gcov}"; }
+prefix="${here//\//#}#"  # gcov -p writes each '/' of a source's path as '#'
+name() { local f=${1#"$prefix"}; f=${f//#//}; echo "${f%.gcov}"; }
 for f in $(files); do
   total=$(grep -cE '^ +([0-9]+\*?|#####):' "$f" || true)
   missed=$(grep -cE '^ +#####:' "$f" || true)
