@@ -577,11 +577,8 @@ TEST_F(MeshIo, ply_variants_are_read) {
 
   // A face whose flags have vcglib's deleted bit (MeshLab saved it without compacting) is
   // left out.
-  const MeshFile deleted = read_mesh(write("deleted.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
-                                                          "property float y\nproperty float z\nelement face 2\n"
-                                                          "property list uchar int vertex_indices\nproperty int flags\n"
-                                                          "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 0\n"
-                                                          "3 0 2 3 1\n"));
+  const MeshFile deleted = read_mesh(write("deleted.ply", ply_header(4, 2, "property int flags\n") +
+                                                              "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 0\n3 0 2 3 1\n"));
   ASSERT_EQ(deleted.triangles.size(), 1u);
   EXPECT_EQ(deleted.triangles[0], (std::array<Index, 3>{0, 1, 2}));
 
