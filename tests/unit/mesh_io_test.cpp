@@ -661,6 +661,26 @@ TEST_F(MeshIo, ply_variants_are_read) {
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("bad_grid.ply: unreadable PLY ("), std::string::npos) << e.what();
   }
+  // A grid's size must be there, as whole numbers, and fit its entries; elsewhere such a
+  // line is a comment like any other.
+  std::string unsized = range_grid("1 0\n1 1\n1 2\n1 3\n1 4\n1 5\n");
+  unsized.replace(unsized.find("num_cols 3"), 10, "num_cols x");
+  std::string misfit = unsized;
+  misfit.replace(misfit.find("num_cols x"), 10, "num_cols 4");
+  for (const std::string& bad : {unsized, misfit}) {
+    try {
+      read_mesh(write("unsized.ply", bad));
+      ADD_FAILURE() << "read:\n" << bad;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("a range grid of 6 entries without num_cols and num_rows that many"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  const std::string commented = ply_header(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(read_mesh(write("commented.ply", std::string(commented).insert(4, "comment num_cols wide\n")))
+                .triangles.size(),
+            1u);
 }
 
 TEST_F(MeshIo, off_variants_are_read) {

@@ -168,13 +168,15 @@ Header read_header(const std::string& path, const std::string& file) {
       if (f.size() != 1 || !magic(f[0])) unreadable(path, "the file does not start with 'ply'");
       continue;
     }
-    if (!f.empty() && (f[0] == "comment" || f[0] == "obj_info")) {
-      if (f.size() == 3 && (f[1] == "num_cols" || f[1] == "num_rows"))
-        if (!parse_number(f[2], f[1] == "num_cols" ? h.grid_cols : h.grid_rows))
-          unreadable(path, "a range grid's " + std::string(f[1]) + " that is not a whole number");
+    if (f.empty()) continue;
+    if (f[0] == "comment" || f[0] == "obj_info") {
+      // A range grid's size; anything else there (a size that is no number included) is
+      // text, which only a range grid, refused without its size, would miss.
+      long long n;
+      if (f.size() == 3 && (f[1] == "num_cols" || f[1] == "num_rows") && parse_number(f[2], n))
+        (f[1] == "num_cols" ? h.grid_cols : h.grid_rows) = n;
       continue;
     }
-    if (f.empty()) continue;
     if (f[0] == "end_header") {
       ended = true;
     } else if (f[0] == "format" && f.size() >= 2) {
@@ -243,14 +245,15 @@ MeshFile read_ply(const std::string& path) {
   };
   std::vector<long long> list;  // a strip's or a grid entry's indices (-1: none)
   std::vector<long long> grid;  // a range grid's vertex at each point, row by row (-1: none)
-  bool have_vertices = false, have_faces = false;
+  bool have_vertices = false, have_faces = false, have_grid = false;
   for (const Element& e : header.elements) {
     const bool vertex = e.name == "vertex", face = e.name == "face";
     const bool strips = e.name == "tristrips", range = e.name == "range_grid";
-    if (range && (header.grid_cols < 0 || header.grid_rows < 0 || !grid.empty() ||
+    if ((vertex && have_vertices) || (face && have_faces) || (range && have_grid))
+      fail("two " + detail::quoted(e.name) + " elements");
+    if (range && (header.grid_cols < 0 || header.grid_rows < 0 ||
                   double(header.grid_cols) * double(header.grid_rows) != double(e.count)))
       fail("a range grid of " + std::to_string(e.count) + " entries without num_cols and num_rows that many");
-    if ((vertex && have_vertices) || (face && have_faces)) fail("two " + detail::quoted(e.name) + " elements");
     const int xyz[3] = {e.find("x"), e.find("y"), e.find("z")};
     // Colours as MeshLab writes them (bytes; alpha optional), or as fractions in floats.
     const int rgba[4] = {e.find("red"), e.find("green"), e.find("blue"), e.find("alpha")};
@@ -264,6 +267,7 @@ MeshFile read_ply(const std::string& path) {
     const int flags = face ? e.find("flags") : -1;
     have_vertices |= vertex;
     have_faces |= face;
+    have_grid |= range;
     if (e.properties.empty()) continue;  // nothing to read, however many
     if (vertex) positions.reserve(std::size_t(e.count));
     if (coloured) colours.reserve(std::size_t(e.count));
