@@ -50,8 +50,12 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
   using Mesh = std::remove_reference_t<decltype(m->cm)>;
   const std::string name = layer_name(*m);
   require_faces(m->cm, name);
-  // The quads take the input's vertex colours (at their closest points on it).
-  const bool coloured = m->hasDataMask(Model::MM_VERTCOLOR);
+  // The quads take the input's vertex and face colours (at their closest points on it).
+  const bool vertex_coloured = m->hasDataMask(Model::MM_VERTCOLOR);
+  const bool face_coloured = m->hasDataMask(Model::MM_FACECOLOR);
+  const bool coloured = vertex_coloured || face_coloured;
+  const int colour_mask =
+      (vertex_coloured ? int(Model::MM_VERTCOLOR) : 0) | (face_coloured ? int(Model::MM_FACECOLOR) : 0);
   Outcome out;
   switch (id) {
     case kSimplify: {
@@ -60,8 +64,8 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
       auto* result = md.addNewMesh("", QString::fromStdString(name + " quads"), true);
       assign_quads(result->cm, q);
       if (coloured) {
-        result->updateDataMask(Model::MM_VERTCOLOR);
-        paint(VertexColours<Mesh>(m->cm), result->cm);
+        result->updateDataMask(colour_mask);
+        paint(SurfaceColours<Mesh>(m->cm, vertex_coloured, face_coloured), result->cm);
       }
       update_box(result);
       mark_polygonal(result);
@@ -69,8 +73,8 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
     }
     case kConvert: {
       const QuadMesh q = run_conversion(mesh_file_of(m->cm), name, out);
-      std::optional<VertexColours<Mesh>> colours;
-      if (coloured) colours.emplace(m->cm);
+      std::optional<SurfaceColours<Mesh>> colours;
+      if (coloured) colours.emplace(m->cm, vertex_coloured, face_coloured);
       assign_quads(m->cm, q);
       if (colours) paint(*colours, m->cm);
       m->clearDataMask(Model::MM_VERTFACETOPO);

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "quadsimp/io/vertex_colours.h"
+#include "quadsimp/io/surface_colours.h"
 #include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/mesh/quad_mesh.h"
 #include "quadsimp/simplify/pipeline.h"
@@ -80,11 +80,21 @@ void assign_quads(CMesh& m, const QuadMesh& q) {
   }
 }
 
-//! Colours the vertices of `quads` from `colours` (VertexColours of the input layer).
+//! Colours `quads` (as assign_quads() made them) from `colours` (SurfaceColours of the
+//! input layer): their vertices, and each quad's two triangles alike, as `colours` has
+//! them. \pre `quads` has the colours enabled that `colours` has.
 template <class Colours, class CMesh>
 void paint(Colours&& colours, CMesh& quads) {
-  for (auto& v : quads.vert)
-    if (!v.IsD()) v.C() = colours.at(v.cP());
+  if (colours.has_vertex_colours())
+    for (auto& v : quads.vert)
+      if (!v.IsD()) v.C() = colours.vertex_colour(v.cP());
+  if (!colours.has_face_colours()) return;
+  for (std::size_t f = 0; f + 1 < quads.face.size(); f += 2) {
+    auto& t1 = quads.face[f];
+    auto& t2 = quads.face[f + 1];
+    const auto centroid = (t1.cP(0) + t1.cP(1) + t1.cP(2) + t2.cP(2)) / 4;  // t2 is c0, c2, c3
+    t1.C() = t2.C() = colours.face_colour(centroid);
+  }
 }
 
 //! Refuses a layer without faces with a message that says what it probably is.

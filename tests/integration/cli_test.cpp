@@ -174,8 +174,58 @@ TEST_F(Cli, vertex_colours_reach_the_quads) {
   EXPECT_EQ(std::count(first_v.begin(), first_v.end(), ' '), 6) << first_v;  // v x y z r g b
   EXPECT_EQ(off.rfind("COFF", 0), 0u);
   ASSERT_EQ(run("simplify " + input_ + " " + p("plain.ply") + " --faces 60 -q").code, 0);
-  EXPECT_TRUE(read_mesh(p("plain.ply")).colours.empty());
+  const MeshFile plain = read_mesh(p("plain.ply"));
+  EXPECT_TRUE(plain.colours.empty());
+  EXPECT_FALSE(plain.has_face_colours());
   EXPECT_EQ(read("plain.ply").find("red"), std::string::npos);
+}
+
+// A PLY's face colours reach the quads (each quad the colour of the input face closest
+// to its centre), in PLY and OFF; OBJ is written without them, and the log says so.
+TEST_F(Cli, face_colours_reach_the_quads) {
+  const TriMesh sphere = fixtures::tri_sphere(24, 32);
+  std::string ply = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(sphere.n_vertices()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                    std::to_string(sphere.n_faces()) +
+                    "\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"
+                    "property uchar blue\nend_header\n";
+  for (const Vec3& v : sphere.positions)
+    ply += std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) + "\n";
+  // The northern half red, the southern half blue.
+  for (const auto& f : sphere.faces) {
+    const bool north = sphere.positions[f[0]].z() + sphere.positions[f[1]].z() + sphere.positions[f[2]].z() > 0;
+    ply += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) +
+           (north ? " 255 0 0\n" : " 0 0 255\n");
+  }
+  const std::string in = write("faces.ply", ply);
+  // The last run takes the converted quads: face colours read from OFF and carried on.
+  const std::pair<std::string, std::string> runs[] = {
+      {"simplify " + in + " " + p("s.ply") + " --faces 150", p("s.ply")},
+      {"convert " + in + " " + p("c.off"), p("c.off")},
+      {"simplify " + p("c.off") + " " + p("a.off") + " --adaptive --auto-halt", p("a.off")}};
+  for (const auto& [command, output] : runs) {
+    SCOPED_TRACE(command);
+    ASSERT_EQ(run(command + " -q").code, 0);
+    const MeshFile f = read_mesh(output);
+    ASSERT_TRUE(f.triangle_colours.empty());
+    ASSERT_EQ(f.quad_colours.size(), f.quads.size());
+    // Quads across the equator may take either colour; the others their half's.
+    std::size_t reds = 0, blues = 0;
+    for (std::size_t i = 0; i < f.quads.size(); ++i) {
+      double z = 0;
+      for (Index v : f.quads[i]) z += f.positions[v].z() / 4;
+      const Colour c = f.quad_colours[i];
+      EXPECT_TRUE(c == (z > 0 ? Colour{255, 0, 0, 255} : Colour{0, 0, 255, 255}) || std::abs(z) < 0.2) << z;
+      reds += c[0] == 255;
+      blues += c[2] == 255;
+    }
+    EXPECT_EQ(reds + blues, f.quads.size());
+    EXPECT_GT(std::min(reds, blues), f.quads.size() / 3);
+  }
+  const CliRun r = run("simplify " + in + " " + p("s.obj") + " --faces 150");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("OBJ is written without the input's face colours"), std::string::npos) << r.out;
+  EXPECT_EQ(run("simplify " + in + " " + p("s.ply") + " --faces 150").out.find("face colours"), std::string::npos);
 }
 
 TEST_F(Cli, bad_arguments_exit_2) {

@@ -11,7 +11,7 @@
 #  - a strip of triangles folded back onto a grid is laid flat, and the log says so;
 #  - the quads come out as polygonal layers that MeshLab's polygon filters accept;
 #  - MeshLab's own quads (its smart triangle pairing) are simplified;
-#  - a coloured layer's quads take its vertex colours.
+#  - a coloured layer's quads take its vertex colours, and its face colours.
 # Usage: meshlabserver_test.sh PLUGIN.so QUADSIMP_CLI REPO_DIR DATASETS_DIR
 set -euo pipefail
 plugin=$1 cli=$2 repo=$3 datasets=$4
@@ -354,6 +354,66 @@ then
   echo "ok: the quads take the layer's vertex colours"
 else
   fail "the quads did not take the coloured torus's colours"; cat "$work/server.log"
+fi
+
+# 9. A layer's face colours reach its quads: the torus's faces coloured by MeshLab's own
+#    face colour function (red where x > 0, blue elsewhere), simplified and saved with its
+#    face colours; each triangle (both of a quad) must take its half's colour, quads across
+#    the line (within a quad's size) either.
+{
+  printf '<!DOCTYPE FilterScript>\n<FilterScript>\n <filter name="Per Face Color Function">\n'
+  printf '  <Param name="r" type="RichString" value="(x0+x1+x2)/3 &gt; 0 ? 255 : 0"/>\n'
+  printf '  <Param name="g" type="RichString" value="0"/>\n'
+  printf '  <Param name="b" type="RichString" value="(x0+x1+x2)/3 &gt; 0 ? 0 : 255"/>\n'
+  printf '  <Param name="a" type="RichString" value="255"/>\n'
+  printf '  <Param name="onselected" type="RichBool" value="false"/>\n </filter>\n'
+  printf '%s\n</FilterScript>\n' "${simplification/value=\"3000\"/value=\"500\"}"
+} >"$work/faces.mlx"
+if server -i "$work/torus.ply" -o "$work/faces.ply" -m fc -s "$work/faces.mlx" &&
+   python3 - "$work/faces.ply" <<'PY'
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+end = data.index(b"end_header\n") + len(b"end_header\n")
+header = data[:end].decode("ascii").split("\n")
+assert "format binary_little_endian 1.0" in header, header[:3]
+code = {"char": "b", "uchar": "B", "short": "h", "ushort": "H", "int": "i", "uint": "I", "float": "f", "double": "d"}
+elements = []  # (name, count, [(type, name, list count type or None)])
+for line in header:
+    w = line.split()
+    if w[:1] == ["element"]:
+        elements.append((w[1], int(w[2]), []))
+    elif w[:1] == ["property"]:
+        elements[-1][2].append((w[-2], w[-1], w[2] if w[1] == "list" else None))
+pos, points, worst_wrong, faces = end, [], 0, 0
+for name, count, props in elements:
+    for _ in range(count):
+        row = {}
+        for kind, prop, list_count in props:
+            if list_count:
+                (n,) = struct.unpack_from("<" + code[list_count], data, pos)
+                pos += struct.calcsize(code[list_count])
+                row[prop] = struct.unpack_from("<%d%s" % (n, code[kind]), data, pos)
+                pos += n * struct.calcsize(code[kind])
+            else:
+                (row[prop],) = struct.unpack_from("<" + code[kind], data, pos)
+                pos += struct.calcsize(code[kind])
+        if name == "vertex":
+            points.append(row["x"])
+        elif name == "face":
+            faces += 1
+            x = sum(points[i] for i in row["vertex_indices"]) / 3
+            colour = (row["red"], row["green"], row["blue"])
+            assert colour in ((255, 0, 0), (0, 0, 255)), colour
+            if colour != ((255, 0, 0) if x > 0 else (0, 0, 255)):
+                worst_wrong = max(worst_wrong, abs(x))
+# 500 quads over a torus 2.7 across: a quad is about 0.2 wide.
+print(f"{faces} triangles; the farthest from x = 0 of another half's colour: {worst_wrong:.3f}")
+sys.exit(0 if faces == 1000 and worst_wrong < 0.2 else 1)
+PY
+then
+  echo "ok: the quads take the layer's face colours"
+else
+  fail "the quads did not take the torus's face colours"; cat "$work/server.log"
 fi
 
 if [ "$failures" -gt 0 ]; then echo "$failures failed"; exit 1; fi

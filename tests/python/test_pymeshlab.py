@@ -278,6 +278,47 @@ def test_conversion_keeps_the_layers_colours(bunny_path):
     assert_coloured_by_position(ms.current_mesh(), lo, size)
 
 
+def colour_faces_by_half(ms):
+    """Colours the current layer's faces with MeshLab's own function: red above the box's middle height, blue
+    below. Returns the middle height."""
+    box = ms.current_mesh().bounding_box()
+    mid = (box.min()[1] + box.max()[1]) / 2
+    above = f"(y0+y1+y2)/3 > {mid}"
+    ms.compute_color_by_function_per_face(r=f"{above} ? 255 : 0", g="0", b=f"{above} ? 0 : 255")
+    return mid
+
+
+def assert_faces_coloured_by_half(mesh, mid, margin):
+    """Each quad (both its triangles) red above `mid`, blue below; quads within `margin` of it either."""
+    assert mesh.has_face_color()
+    v, f, c = mesh.vertex_matrix(), mesh.face_matrix(), mesh.face_color_matrix()
+    y = v[f].mean(axis=1)[:, 1]
+    red, blue = np.array([1.0, 0, 0, 1]), np.array([0, 0, 1.0, 1])
+    assert all((c[i] == red).all() or (c[i] == blue).all() for i in range(len(f)))
+    clear = np.abs(y - mid) > margin
+    assert (c[clear & (y > mid)] == red).all() and (c[clear & (y < mid)] == blue).all()
+    assert clear.sum() > 0.8 * len(f)
+
+
+def test_the_quads_take_the_inputs_face_colours(bunny_path):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(bunny_path)
+    mid = colour_faces_by_half(ms)
+    margin = 0.05 * ms.current_mesh().bounding_box().dim_y()
+    assert not ms.current_mesh().has_vertex_color()
+    for adaptive in (False, True):
+        ms.set_current_mesh(0)
+        ms.meshing_quad_mesh_simplification(targetfacenum=1000, adaptive=adaptive)
+        out = ms.current_mesh()
+        assert is_pure_quad(out) and len(out.polygonal_face_list()) == 1000
+        assert_faces_coloured_by_half(out, mid, margin)
+        assert not out.has_vertex_color(), "only the colours the input has"
+    ms.set_current_mesh(0)
+    ms.meshing_tri_to_pure_quad()
+    assert is_pure_quad(ms.current_mesh())
+    assert_faces_coloured_by_half(ms.current_mesh(), mid, margin)
+
+
 def test_conversion(bunny_path):
     for ms in meshsets(bunny_path):
         triangles = ms.current_mesh().face_number()

@@ -116,7 +116,9 @@ TEST_F(MeshIo, ply_vertex_colours_as_bytes_or_fractions) {
   ASSERT_EQ(f.colours.size(), 3u);
   EXPECT_EQ(f.colours[0], (Colour{255, 128, 0, 255}));
   EXPECT_EQ(f.colours[2], (Colour{0, 0, 255, 255}));  // out of range: clamped
-  EXPECT_TRUE(read_mesh(write("plain.ply", ply_header(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")).colours.empty());
+  const MeshFile plain = read_mesh(write("plain.ply", ply_header(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  EXPECT_TRUE(plain.colours.empty());
+  EXPECT_FALSE(plain.has_face_colours());
 }
 
 // Colours written with the quads (PLY properties, COFF, OBJ's v x y z r g b) read back
@@ -128,7 +130,7 @@ TEST_F(MeshIo, vertex_colours_round_trip_every_output_format) {
     colours[v] = {std::uint8_t(10 * v), std::uint8_t(255 - 7 * v), std::uint8_t(v % 3 * 100), std::uint8_t(200 + v)};
   for (const char* ext : {"ply", "obj", "off"}) {
     const std::string p = path(std::string("grid.") + ext);
-    write_quad_mesh(p, m, colours);
+    write_quad_mesh(p, m, {colours, {}});
     SCOPED_TRACE(ext);
     const MeshFile f = read_mesh(p);
     ASSERT_EQ(f.colours.size(), f.positions.size());
@@ -146,6 +148,93 @@ TEST_F(MeshIo, vertex_colours_round_trip_every_output_format) {
   EXPECT_TRUE(read_mesh(write("part.obj", tri)).colours.empty());
   const std::string off = "COFF\n3 1 0\n0 0 0 255 0 0\n1 0 0\n0 1 0 0 0 255\n3 0 1 2\n";
   EXPECT_TRUE(read_mesh(write("part.off", off)).colours.empty());
+  // One field with a decimal point makes them all fractions: "1 0.5 0" is orange.
+  const MeshFile mixed = read_mesh(write("mixed.off", "COFF\n3 1 0\n0 0 0 1 0.5 0\n1 0 0 1 2 3\n0 1 0 1 2 3\n3 0 1 2\n"));
+  ASSERT_EQ(mixed.colours.size(), 3u);
+  EXPECT_EQ(mixed.colours[0], (Colour{255, 128, 0, 255}));
+  EXPECT_EQ(mixed.colours[1], (Colour{1, 2, 3, 255}));
+}
+
+namespace {
+// A row of three quads whose first face, and the two vertices only it used, are gone.
+QuadMesh grid_with_a_tombstone() {
+  QuadMesh m = quad_grid(3, 1);  // faces (0,1,5,4) (1,2,6,5) (2,3,7,6)
+  m.kill_face(0);
+  m.kill_vertex(0);
+  m.kill_vertex(4);
+  m.set_out(1, QuadMesh::halfedge(1, 0));
+  m.set_out(5, QuadMesh::halfedge(1, 3));
+  m.repair_out(1);
+  m.repair_out(5);
+  validate(m);
+  return m;
+}
+}  // namespace
+
+// Face colours: PLY's face properties (bytes or fractions, alpha optional) and OFF's
+// fields after a face's corners go to the faces made of that face; a quad made of two
+// flagged triangles takes the first's.
+TEST_F(MeshIo, face_colours_are_read_from_ply_and_off) {
+  const std::string ply = write("faces.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+                                "property float z\nelement face 3\nproperty uchar green\n"
+                                "property list uchar int vertex_indices\nproperty uchar red\nproperty uchar blue\n"
+                                "property uchar alpha\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n2 1 0\n"
+                                "2 3 0 1 2 1 3 4\n20 4 1 4 5 2 10 30 40\n0 3 2 3 0 5 6 7\n");
+  const MeshFile p = read_mesh(ply);
+  ASSERT_EQ(p.triangles.size(), 2u);
+  ASSERT_EQ(p.quads.size(), 1u);
+  EXPECT_EQ(p.triangle_colours, (std::vector<Colour>{{1, 2, 3, 4}, {5, 0, 6, 7}}));
+  EXPECT_EQ(p.quad_colours, (std::vector<Colour>{{10, 20, 30, 40}}));
+  EXPECT_EQ(triangle_colours_of(p),
+            (std::vector<Colour>{{1, 2, 3, 4}, {5, 0, 6, 7}, {10, 20, 30, 40}, {10, 20, 30, 40}}));
+  // MeshLab's triangle pairs (faux flags) as fractions; a pentagon's three triangles.
+  const MeshFile f = read_mesh(write("pairs.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+                                                  "property float y\nproperty float z\nelement face 2\n"
+                                                  "property list uchar int vertex_indices\nproperty int flags\n"
+                                                  "property float red\nproperty float green\nproperty float blue\n"
+                                                  "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+                                                  "3 0 1 2 1048576 1 0 0\n3 0 2 3 262144 0 0 1\n"));
+  ASSERT_EQ(f.quads.size(), 1u);
+  EXPECT_EQ(f.quad_colours, (std::vector<Colour>{{255, 0, 0, 255}}));
+  const std::string off = "OFF\n6 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n2 1 0\n"
+                          "3 0 1 2 1 2 3\n4 1 4 5 2 0.5 1 0 0.25\n5 0 1 4 5 3 9 8 7 6\n2 0 5\n";
+  const MeshFile o = read_mesh(write("faces.off", off));
+  EXPECT_EQ(o.triangle_colours, (std::vector<Colour>{{1, 2, 3, 255}, {9, 8, 7, 6}, {9, 8, 7, 6}, {9, 8, 7, 6}}));
+  EXPECT_EQ(o.quad_colours, (std::vector<Colour>{{128, 255, 0, 64}}));
+  // Not every face coloured, or an index into a colour map: no face colours.
+  for (const std::string faces : {"3 0 1 2 1 2 3\n4 1 4 5 2\n", "3 0 1 2 7\n4 1 4 5 2 7\n"}) {
+    const MeshFile none = read_mesh(write("part.off", "OFF\n6 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n2 1 0\n" +
+                                                          faces));
+    EXPECT_FALSE(none.has_face_colours()) << faces;
+    EXPECT_TRUE(triangle_colours_of(none).empty());
+  }
+}
+
+// Face colours written with the quads read back the same from PLY and OFF (OFF without
+// alpha); OBJ has none.
+TEST_F(MeshIo, face_colours_round_trip_ply_and_off) {
+  const QuadMesh m = grid_with_a_tombstone();  // face 0's colour is not written
+  std::vector<Colour> colours(m.face_capacity());
+  for (Index f = 0; f < m.face_capacity(); ++f)
+    colours[f] = {std::uint8_t(10 * f), std::uint8_t(255 - 7 * f), std::uint8_t(f % 3 * 100), std::uint8_t(200 + f)};
+  for (const char* ext : {"ply", "off", "obj"}) {
+    SCOPED_TRACE(ext);
+    const std::string p = path(std::string("faces.") + ext);
+    write_quad_mesh(p, m, {{}, colours});
+    const MeshFile f = read_mesh(p);
+    ASSERT_EQ(f.quads.size(), m.n_faces());
+    if (std::string(ext) == "obj") {
+      EXPECT_FALSE(f.has_face_colours());
+      continue;
+    }
+    ASSERT_EQ(f.quad_colours.size(), f.quads.size());
+    for (std::size_t i = 0; i < f.quads.size(); ++i) {
+      Colour want = colours[i + 1];
+      if (std::string(ext) == "off") want[3] = 255;
+      EXPECT_EQ(f.quad_colours[i], want) << i;
+    }
+  }
 }
 
 TEST_F(MeshIo, obj_keeps_every_bit_of_tiny_and_far_coordinates) {
@@ -167,15 +256,7 @@ TEST_F(MeshIo, obj_keeps_every_bit_of_tiny_and_far_coordinates) {
 }
 
 TEST_F(MeshIo, tombstones_are_skipped_when_writing) {
-  QuadMesh m = quad_grid(3, 1);  // faces (0,1,5,4) (1,2,6,5) (2,3,7,6)
-  m.kill_face(0);
-  m.kill_vertex(0);
-  m.kill_vertex(4);
-  m.set_out(1, QuadMesh::halfedge(1, 0));
-  m.set_out(5, QuadMesh::halfedge(1, 3));
-  m.repair_out(1);
-  m.repair_out(5);
-  validate(m);
+  const QuadMesh m = grid_with_a_tombstone();
   write_quad_mesh(path("t.ply"), m);
   QuadMesh compacted = m;
   compacted.compact();
@@ -738,7 +819,8 @@ TEST_F(MeshIo, writes_are_atomic_and_refuse_unknown_formats) {
   for (const auto& e : fs::directory_iterator(dir_)) files += e.is_regular_file();
   EXPECT_EQ(files, 1u);  // no temporary left beside it
   // Callers' mistakes, not the user's: a colour short, a field of the wrong size.
-  EXPECT_THROW(write_quad_mesh(path("c.ply"), cube(), std::vector<Colour>(7)), std::invalid_argument);
+  EXPECT_THROW(write_quad_mesh(path("c.ply"), cube(), {std::vector<Colour>(7), {}}), std::invalid_argument);
+  EXPECT_THROW(write_quad_mesh(path("c.ply"), cube(), {{}, std::vector<Colour>(5)}), std::invalid_argument);
   const TriMesh t = tri_sphere(5, 6);
   EXPECT_THROW(write_tri_mesh_ply(path("f.ply"), t, {{"s", std::vector<float>(t.n_vertices() - 1)}}),
                std::invalid_argument);

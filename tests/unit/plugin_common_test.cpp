@@ -33,7 +33,8 @@ using namespace qs::fixtures;
 namespace {
 
 // A MeshLab layer's mesh: CMeshO's components that the plugin's code touches, with
-// marks and adjacency optional as in MeshLab (VertexColours enables the marks).
+// marks, face colours and adjacency optional as in MeshLab (SurfaceColours enables the
+// marks).
 template <class S>
 struct Parts {
   template <class T> class VCoord : public vcg::vertex::Coord<vcg::Point3<S>, T> {};
@@ -53,7 +54,8 @@ class LayerVertex
                          vcg::vertex::MarkOcf> {};
 template <class S>
 class LayerFace : public vcg::Face<LayerTypes<S>, vcg::face::InfoOcf, vcg::face::VertexRef, vcg::face::BitFlags,
-                                   Parts<S>::template FNormal, vcg::face::MarkOcf, vcg::face::FFAdjOcf> {};
+                                   Parts<S>::template FNormal, vcg::face::Color4bOcf, vcg::face::MarkOcf,
+                                   vcg::face::FFAdjOcf> {};
 template <class S>
 class Layer
     : public vcg::tri::TriMesh<vcg::vertex::vector_ocf<LayerVertex<S>>, vcg::face::vector_ocf<LayerFace<S>>> {
@@ -160,14 +162,46 @@ TYPED_TEST(PluginLayer, quads_take_the_colour_at_their_closest_point) {
   const std::vector<Vec3> p = {{0.25, 0, 0.1}, {1, 0, 0.1}, {2, 1, 0.1}, {0.25, 1, 0.1}};
   Layer<TypeParam> quads;
   assign_quads(quads, QuadMesh::from_faces(p, {{0, 1, 2, 3}}));
-  paint(VertexColours<Layer<TypeParam>>(input), quads);
+  paint(SurfaceColours<Layer<TypeParam>>(input, true, false), quads);
   EXPECT_EQ(quads.vert[0].C(), vcg::Color4b(191, 0, 64, 255));
   EXPECT_EQ(quads.vert[1].C(), vcg::Color4b(0, 0, 255, 255));
   EXPECT_EQ(quads.vert[2].C(), vcg::Color4b(0, 0, 255, 255));
   // One colour all over is passed on as it is.
   for (auto& v : input.vert) v.C() = vcg::Color4b(10, 20, 30, 40);
-  paint(VertexColours<Layer<TypeParam>>(input), quads);
+  paint(SurfaceColours<Layer<TypeParam>>(input, true, false), quads);
   for (const auto& v : quads.vert) EXPECT_EQ(v.cC(), vcg::Color4b(10, 20, 30, 40));
+}
+
+TYPED_TEST(PluginLayer, quads_take_the_colour_of_the_face_closest_to_their_centre) {
+  // Four unit cells in a row, coloured red, red, blue, green; the green one deleted. Two
+  // quads above it, each two cells wide, and a third past its end.
+  const vcg::Color4b red(255, 0, 0, 255), blue(0, 0, 255, 255), green(0, 255, 0, 255);
+  Layer<TypeParam> input;
+  input.face.EnableColor();
+  assign_quads(input, quad_grid(4, 1));
+  for (auto& f : input.face) {
+    const auto x = (f.cP(0)[0] + f.cP(1)[0] + f.cP(2)[0]) / 3;
+    f.C() = x < 2 ? red : x < 3 ? blue : green;
+    if (x > 3) vcg::tri::Allocator<Layer<TypeParam>>::DeleteFace(input, f);
+  }
+  const std::vector<Vec3> p = {{0, 0, 0.1}, {2, 0, 0.1}, {2, 1, 0.1}, {0, 1, 0.1}, {4.2, 0, 0.1},
+                               {4.2, 1, 0.1}, {5, 0, 0.1}, {5, 1, 0.1}};
+  Layer<TypeParam> quads;
+  quads.face.EnableColor();
+  assign_quads(quads, QuadMesh::from_faces(p, {{0, 1, 2, 3}, {1, 4, 5, 2}, {4, 6, 7, 5}}));
+  for (auto& v : quads.vert) v.C() = green;
+  paint(SurfaceColours<Layer<TypeParam>>(input, false, true), quads);
+  // Quad 1 (x 2 to 4.2, centre 3.1) is nearest the blue cell once the green one is gone;
+  // the last one too. Each quad's two triangles alike; the vertices left as they were.
+  const vcg::Color4b expected[3] = {red, blue, blue};
+  for (std::size_t f = 0; f < quads.face.size(); ++f) EXPECT_EQ(quads.face[f].cC(), expected[f / 2]) << f;
+  for (const auto& v : quads.vert) EXPECT_EQ(v.cC(), green);
+  // One colour all over is passed on as it is, and so are both kinds together.
+  for (auto& f : input.face) f.C() = vcg::Color4b(10, 20, 30, 40);
+  for (auto& v : input.vert) v.C() = vcg::Color4b(1, 2, 3, 4);
+  paint(SurfaceColours<Layer<TypeParam>>(input, true, true), quads);
+  for (const auto& f : quads.face) EXPECT_EQ(f.cC(), vcg::Color4b(10, 20, 30, 40));
+  for (const auto& v : quads.vert) EXPECT_EQ(v.cC(), vcg::Color4b(1, 2, 3, 4));
 }
 
 TYPED_TEST(PluginLayer, a_layer_without_faces_is_refused_with_what_it_is) {

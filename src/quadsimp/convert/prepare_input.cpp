@@ -52,7 +52,7 @@ Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions
   in.was_pure_quad = file.is_pure_quad() && !repaired;
   if (file.is_pure_quad() && repaired && log)
     log(name + ": the quads needed the repairs above; their triangles are paired into quads again");
-  const bool coloured = !file.colours.empty();  // the file is kept whole (colour_source)
+  const bool coloured = !file.colours.empty() || file.has_face_colours();  // kept whole (colour_source)
   if (in.was_pure_quad) {
     try {
       in.quads = QuadMesh::from_faces(coloured ? file.positions : std::move(file.positions), file.quads);

@@ -16,21 +16,29 @@ namespace qs {
 //! back as quads whether the file has quad polygons or MeshLab's triangle pairs with
 //! faux-edge face flags (PLY saved with per-face flags); other polygons as triangles.
 //! Vertex colours come back too (MeshFile::colours): PLY's, COFF's, and OBJ's
-//! `v x y z r g b` (MeshLab's extension), where every vertex has one.
+//! `v x y z r g b` (MeshLab's extension), where every vertex has one; and face colours
+//! (MeshFile::triangle_colours and quad_colours): PLY's and OFF's, where every face has one.
 //! \throw InvalidInput "PATH: reason" for unreadable, truncated or unknown files.
 MeshFile read_mesh(const std::string& path);
 
-//! Writes the quads of `mesh` as PLY (ASCII), OBJ or OFF, chosen by extension, with
-//! per-vertex `colours` if given (one per vertex id of `mesh`; OBJ: after the
-//! coordinates, as MeshLab writes them). The file appears atomically: written to a
-//! temporary beside it, then renamed.
-//! \throw InvalidInput for an unknown extension or a file that cannot be written.
-void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const std::vector<Colour>& colours = {});
+//! A quad mesh's colours: one per vertex id and one per face id, or none of a kind.
+struct QuadColours {
+  std::vector<Colour> vertices;
+  std::vector<Colour> faces;
+};
 
-//! The colours of `from` (read_mesh()'s vertex colours) at the quads' vertices: each
-//! the colour at its closest point on `from`'s surface, as the MeshLab filters give them
-//! (vertex_colours.h). One per vertex id of `quads`; none if `from` has no colours.
-std::vector<Colour> colours_of_quads(const MeshFile& from, const QuadMesh& quads);
+//! Writes the quads of `mesh` as PLY (ASCII), OBJ or OFF, chosen by extension, with
+//! their `colours` if given (OBJ: the vertices' after the coordinates, as MeshLab writes
+//! them, and no face colours). The file appears atomically: written to a temporary
+//! beside it, then renamed.
+//! \throw InvalidInput for an unknown extension or a file that cannot be written.
+void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadColours& colours = {});
+
+//! The colours of `from` (read_mesh()'s) on the quads, as the MeshLab filters give them
+//! (surface_colours.h): each vertex the vertex colour at its closest point on `from`'s
+//! surface, each quad the colour of the face closest to its centroid. None of a kind
+//! `from` does not have.
+QuadColours colours_of_quads(const MeshFile& from, const QuadMesh& quads);
 
 //! Writes a triangle mesh as PLY with per-vertex float properties and a colour ramp
 //! of the first property (for viewing fields in MeshLab). Atomic like write_quad_mesh.

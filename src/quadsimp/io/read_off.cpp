@@ -66,6 +66,10 @@ MeshFile read_off(const std::string& path) {
     if (coloured && (coloured = in.colour(colour_at, false, c))) colours.push_back(c);
   }
 
+  // A face's colour after its corners (bytes, or fractions with a decimal point); kept only
+  // if every face has one (a single number there is an index into a colour map: none).
+  bool face_coloured = nf > 0;
+  std::vector<Colour> face_colours;
   std::vector<Index> corners;
   for (long long f = 0; f < nf; ++f) {
     if (!in.next()) in.ends("after " + std::to_string(f) + " of its " + std::to_string(nf) + " faces");
@@ -76,7 +80,6 @@ MeshFile read_off(const std::string& path) {
       if (!in.next()) in.ends("before the corners of its last face");
       first = 0;
     }
-    // Fields after the corners are the face's colour.
     if (in.size() - first < std::size_t(n))
       in.fail("a face of " + std::to_string(n) + " corners lists " + std::to_string(in.size() - first));
     corners.clear();
@@ -86,9 +89,14 @@ MeshFile read_off(const std::string& path) {
         in.fail("face corner " + std::to_string(c) + " names no vertex (the file has " + std::to_string(nv) + ")");
       corners.push_back(Index(c));
     }
-    if (n > 2) detail::fan(corners.data(), corners.size(), triangles, faux);  // two corners: an edge, not a face
+    if (n < 3) continue;  // two corners: an edge, not a face
+    detail::fan(corners.data(), corners.size(), triangles, faux);
+    Colour c;
+    if (face_coloured && (face_coloured = in.colour(first + std::size_t(n), false, c)))
+      face_colours.resize(triangles.size(), c);
   }
-  MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux);
+  if (!face_coloured) face_colours.clear();
+  MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, face_colours);
   if (coloured) out.colours = std::move(colours);
   return out;
 }

@@ -231,7 +231,7 @@ MeshFile read_ply(const std::string& path) {
 
   Values values(std::string_view(data).substr(header.data), header.format);
   std::vector<Vec3> positions;
-  std::vector<Colour> colours;
+  std::vector<Colour> colours, face_colours;  // face_colours: one per polygon
   std::vector<std::array<Index, 3>> triangles;
   std::vector<std::uint8_t> faux;
   // Faces, flat, checked and fanned once all vertices are known (they may come first).
@@ -257,7 +257,7 @@ MeshFile read_ply(const std::string& path) {
     const int xyz[3] = {e.find("x"), e.find("y"), e.find("z")};
     // Colours as MeshLab writes them (bytes; alpha optional), or as fractions in floats.
     const int rgba[4] = {e.find("red"), e.find("green"), e.find("blue"), e.find("alpha")};
-    const bool coloured = vertex && rgba[0] >= 0 && rgba[1] >= 0 && rgba[2] >= 0;
+    const bool coloured = (vertex || face) && rgba[0] >= 0 && rgba[1] >= 0 && rgba[2] >= 0;
     if (vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)) fail("vertices without x, y and z");
     const bool indexed = face || strips || range;
     int list_at = indexed ? e.find("vertex_indices") : -1;
@@ -270,7 +270,7 @@ MeshFile read_ply(const std::string& path) {
     have_grid |= range;
     if (e.properties.empty()) continue;  // nothing to read, however many
     if (vertex) positions.reserve(std::size_t(e.count));
-    if (coloured) colours.reserve(std::size_t(e.count));
+    if (coloured) (vertex ? colours : face_colours).reserve(std::size_t(e.count));
     if (face) polygon_start.reserve(std::size_t(e.count) + 1);
 
     for (long long i = 0; i < e.count; ++i) {
@@ -327,7 +327,7 @@ MeshFile read_ply(const std::string& path) {
         continue;
       }
       if (vertex) positions.push_back(p);
-      if (coloured) colours.push_back(colour);
+      if (vertex && coloured) colours.push_back(colour);
       if (face) {
         const std::size_t n = corners.size() - first_corner;
         if (n < 3) fail("face " + std::to_string(i) + " has " + std::to_string(n) + " corners");
@@ -337,6 +337,7 @@ MeshFile read_ply(const std::string& path) {
         }
         polygon_start.push_back(corners.size());
         flag_faux.push_back(std::uint8_t((face_flags >> 18) & 7u));  // FAUX0..2 = 0x40000 << k
+        if (coloured) face_colours.push_back(colour);
       }
     }
   }
@@ -361,13 +362,17 @@ MeshFile read_ply(const std::string& path) {
       fail("a face corner " + std::to_string(c) + " names no vertex (the file has " + std::to_string(positions.size()) + ")");
   triangles.reserve(corners.size());
   faux.reserve(corners.size());
+  // Face colours are kept if every face has one (a strip's or a grid's triangles have none).
+  const bool face_coloured = !face_colours.empty() && face_colours.size() == flag_faux.size();
+  std::vector<Colour> triangle_colours;
   for (std::size_t i = 0; i + 1 < polygon_start.size(); ++i) {
     const std::size_t first = faux.size();
     const std::size_t n = polygon_start[i + 1] - polygon_start[i];
     detail::fan(corners.data() + polygon_start[i], n, triangles, faux);
     if (n == 3) faux[first] |= flag_faux[i];  // the bits name a triangle's edges
+    if (face_coloured) triangle_colours.resize(faux.size(), face_colours[i]);
   }
-  MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux);
+  MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, triangle_colours);
   out.colours = std::move(colours);
   return out;
 }

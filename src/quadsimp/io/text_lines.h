@@ -64,17 +64,19 @@ class TextLines {
   }
 
   //! Fields from `from` on as a colour (red, green, blue, and alpha if a fourth field
-  //! follows): fractions of 1 if `fractions`, else bytes, or fractions where a field
-  //! has a decimal point or an exponent. False if three numbers are not there.
+  //! follows): fractions of 1 if `fractions` or if any of them has a decimal point or an
+  //! exponent ("1 0.5 0" is orange, not a byte of red), else bytes. False if three
+  //! numbers are not there.
   bool colour(std::size_t from, bool fractions, Colour& c) const {
     if (fields_.size() < from + 3) return false;
     const std::size_t n = std::min<std::size_t>(4, fields_.size() - from);
+    for (std::size_t k = 0; k < n; ++k)
+      fractions |= fields_[from + k].find_first_of(".eE") != std::string_view::npos;
     c[3] = 255;
     for (std::size_t k = 0; k < n; ++k) {
-      const std::string_view f = fields_[from + k];
       double x;
-      if (!parse_number(f, x)) return false;
-      c[k] = colour_byte(fractions || f.find_first_of(".eE") != std::string_view::npos ? 255 * x : x);
+      if (!parse_number(fields_[from + k], x)) return false;
+      c[k] = colour_byte(fractions ? 255 * x : x);
     }
     return true;
   }

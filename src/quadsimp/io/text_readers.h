@@ -11,16 +11,17 @@ namespace qs {
 // flags mark faux); larger polygons are fanned into triangles from their first corner. \throw InvalidInput "PATH: line N: reason" for
 // anything they cannot read as stated.
 
-//! ASCII OFF ("[ST][C][N]OFF", one vertex and one face per line, colours and normals
-//! ignored).
+//! ASCII OFF ("[ST][C][N]OFF", one vertex and one face per line): positions, COFF's
+//! vertex colours and the faces' colours; normals and texture coordinates ignored.
 MeshFile read_off(const std::string& path);
 
 //! OBJ: "v" and "f" lines (corners from 1, or back from -1; "q": QOBJ's zero-based
 //! quads); normals, texture coordinates, groups and materials ignored.
 MeshFile read_obj(const std::string& path);
 
-//! PLY, ASCII or binary: vertex x, y, z, the faces' corner lists and flags, and old
-//! Stanford files' triangle strips and range grids (a quad per cell of four points).
+//! PLY, ASCII or binary: vertex x, y, z and colours, the faces' corner lists, flags and
+//! colours, and old Stanford files' triangle strips and range grids (a quad per cell of
+//! four points).
 MeshFile read_ply(const std::string& path);
 
 }  // namespace qs

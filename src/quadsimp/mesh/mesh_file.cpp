@@ -7,10 +7,11 @@
 namespace qs {
 
 MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array<Index, 3>> tris,
-                             const std::vector<std::uint8_t>& faux) {
+                             const std::vector<std::uint8_t>& faux, const std::vector<Colour>& colours) {
   MeshFile out;
   out.positions = std::move(positions);
   const Index n = Index(tris.size());
+  const bool coloured = !colours.empty() && colours.size() == tris.size();
   auto faux_edge = [&](Index t) {
     const unsigned b = faux[t] & 7u;
     return b == 1 ? 0 : b == 2 ? 1 : b == 4 ? 2 : -1;
@@ -22,6 +23,7 @@ MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array
   };
   if (faux.size() != tris.size() || !any_faux()) {
     out.triangles = std::move(tris);
+    if (coloured) out.triangle_colours = colours;
     return out;
   }
   // u's faux edge is t's faux edge reversed.
@@ -60,11 +62,13 @@ MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array
     // triangles_of() splits them along their shorter diagonal, around doublets.
     if (u == n) {
       out.triangles.push_back(tris[t]);
+      if (coloured) out.triangle_colours.push_back(colours[t]);
       continue;
     }
     done[u] = 1;
     const int j = faux_edge(u);
     out.quads.push_back({tris[t][(k + 2) % 3], tris[t][k], tris[u][(j + 2) % 3], tris[t][(k + 1) % 3]});
+    if (coloured) out.quad_colours.push_back(colours[t]);
   }
   return out;
 }
@@ -160,6 +164,17 @@ TriMesh triangles_of(const MeshFile& file) {
     split_along(q, odd, t.faces);
   }
   return t;
+}
+
+std::vector<Colour> triangle_colours_of(const MeshFile& file) {
+  if (file.triangle_colours.size() != file.triangles.size() || file.quad_colours.size() != file.quads.size() ||
+      (file.triangle_colours.empty() && file.quad_colours.empty()))
+    return {};
+  // triangles_of() lists the file's triangles, then each quad's two.
+  std::vector<Colour> out = file.triangle_colours;
+  out.reserve(file.triangles.size() + 2 * file.quads.size());
+  for (const Colour& c : file.quad_colours) out.insert(out.end(), 2, c);
+  return out;
 }
 
 }  // namespace qs

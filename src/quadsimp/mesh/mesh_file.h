@@ -24,15 +24,20 @@ struct MeshFile {
   std::vector<std::array<Index, 3>> triangles;
   std::vector<std::array<Index, 4>> quads;
   std::vector<Colour> colours = {};  //!< one per position, or none
+  //! Face colours: one per triangle and one per quad, or none.
+  std::vector<Colour> triangle_colours = {};
+  std::vector<Colour> quad_colours = {};
   bool is_pure_quad() const { return !quads.empty() && triangles.empty(); }
+  bool has_face_colours() const { return !triangle_colours.empty() || !quad_colours.empty(); }
 };
 
 //! Rebuilds quads from triangles that carry "faux" edge flags, the way vcglib and
 //! MeshLab store polygons: bit k of faux[t] marks edge k (corner k to k+1) of triangle
 //! t as the inner diagonal of a quad. Triangles paired through a faux edge shared with a
-//! neighbour become quads; the others stay triangles.
+//! neighbour become quads; the others stay triangles. `colours`, one per triangle if
+//! given, go to the faces made of them (a quad takes its first triangle's).
 MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array<Index, 3>> triangles,
-                             const std::vector<std::uint8_t>& faux);
+                             const std::vector<std::uint8_t>& faux, const std::vector<Colour>& colours = {});
 
 //! Appends the two triangles of quad q split along its shorter diagonal.
 void split_quad(const std::vector<Vec3>& positions, const std::array<Index, 4>& q,
@@ -43,5 +48,9 @@ void split_quad(const std::vector<Vec3>& positions, const std::array<Index, 4>& 
 //! quad's split (vertices at one position counted as one), so that no edge gets four
 //! triangles.
 TriMesh triangles_of(const MeshFile& file);
+
+//! The face colours of triangles_of(file), one per triangle (a quad's two take its
+//! colour), or none if the file has none.
+std::vector<Colour> triangle_colours_of(const MeshFile& file);
 
 }  // namespace qs
