@@ -67,14 +67,6 @@ void print_summary(const SimplifyArgs& a, const QuadQuality& q, double seconds, 
               q.faces, q.regular_percent, q.max_valence, seconds, operations_done(r).c_str());
 }
 
-// The quads with the input's colours. OBJ keeps face colours only as materials in a
-// second file, which is not written: the log says so.
-void write_quads(const std::string& path, const Input& in, const LogFn& log) {
-  if (log && in.colour_source.has_face_colours() && extension_of(path) == "obj")
-    log(path + ": OBJ is written without the input's face colours (.ply and .off keep them)");
-  write_quad_mesh(path, in.quads, colours_of_quads(in.colour_source, in.quads));
-}
-
 }  // namespace
 
 std::string check_output_path(const std::string& input, const std::string& output) {
@@ -97,9 +89,8 @@ int run_convert(const ConvertArgs& a) {
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
-    const LogFn log = stderr_log(a.quiet);
-    Input in = load_input(a.input, {}, log);
-    write_quads(a.output, in, log);
+    Input in = load_input(a.input, {}, stderr_log(a.quiet));
+    write_quad_mesh(a.output, in.quads, colours_of_quads(in.colour_source, in.quads));
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (in.was_pure_quad) {
       std::printf("%s: already pure quad, %u quads written to %s (%.2f s)\n", a.input.c_str(),
@@ -134,7 +125,7 @@ int run_simplify(const SimplifyArgs& a) {
     Input in = load_input(a.input, {}, log);
     const ReferenceSurface ref(std::move(in.reference));
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
-    write_quads(a.output, in, log);
+    write_quad_mesh(a.output, in.quads, colours_of_quads(in.colour_source, in.quads));
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads, &ref);
     if (log)

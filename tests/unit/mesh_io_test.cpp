@@ -211,9 +211,9 @@ TEST_F(MeshIo, face_colours_are_read_from_ply_and_off) {
   }
 }
 
-// Face colours written with the quads read back the same from PLY and OFF (OFF without
-// alpha); OBJ has none.
-TEST_F(MeshIo, face_colours_round_trip_ply_and_off) {
+// Face colours written with the quads read back the same from PLY, OFF (without alpha)
+// and OBJ (as materials in a file beside it).
+TEST_F(MeshIo, face_colours_round_trip_every_output_format) {
   const QuadMesh m = grid_with_a_tombstone();  // face 0's colour is not written
   std::vector<Colour> colours(m.face_capacity());
   for (Index f = 0; f < m.face_capacity(); ++f)
@@ -224,10 +224,6 @@ TEST_F(MeshIo, face_colours_round_trip_ply_and_off) {
     write_quad_mesh(p, m, {{}, colours});
     const MeshFile f = read_mesh(p);
     ASSERT_EQ(f.quads.size(), m.n_faces());
-    if (std::string(ext) == "obj") {
-      EXPECT_FALSE(f.has_face_colours());
-      continue;
-    }
     ASSERT_EQ(f.quad_colours.size(), f.quads.size());
     for (std::size_t i = 0; i < f.quads.size(); ++i) {
       Colour want = colours[i + 1];
@@ -235,6 +231,26 @@ TEST_F(MeshIo, face_colours_round_trip_ply_and_off) {
       EXPECT_EQ(f.quad_colours[i], want) << i;
     }
   }
+}
+
+// OBJ's face colours are its materials' diffuse colours (Kd, and d as alpha), from the
+// material files it names, kept only if every face has one.
+TEST_F(MeshIo, obj_face_colours_come_from_its_materials) {
+  write("a.mtl", "newmtl red one\nKd 1 0 0\nd 0.5\nnewmtl textured\nKd 1 1 1\nmap_Kd t.png\n");
+  write("b.mtl", "# another file\nnewmtl blue\nKa 0 0 0\nKd 0 0 1\n");
+  const std::string v = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n";
+  const MeshFile f = read_mesh(write("m.obj", "mtllib a.mtl b.mtl\n" + v +
+                                                  "usemtl red one\nf 1 2 3 4\nusemtl blue\nf 2 5 3\n"));
+  EXPECT_EQ(f.quad_colours, (std::vector<Colour>{{255, 0, 0, 128}}));
+  EXPECT_EQ(f.triangle_colours, (std::vector<Colour>{{0, 0, 255, 255}}));
+  // A face without a material, with a textured one, with one no file names, or a material
+  // file missing: no face colours.
+  for (const char* faces : {"f 1 2 3 4\nusemtl blue\nf 2 5 3\n", "usemtl textured\nf 1 2 3 4\n",
+                            "usemtl green\nf 1 2 3 4\n"}) {
+    SCOPED_TRACE(faces);
+    EXPECT_FALSE(read_mesh(write("n.obj", "mtllib a.mtl b.mtl\n" + v + faces)).has_face_colours());
+  }
+  EXPECT_FALSE(read_mesh(write("n.obj", "mtllib none.mtl\n" + v + "usemtl blue\nf 1 2 3 4\n")).has_face_colours());
 }
 
 TEST_F(MeshIo, obj_keeps_every_bit_of_tiny_and_far_coordinates) {
@@ -803,17 +819,20 @@ TEST_F(MeshIo, writes_are_atomic_and_refuse_unknown_formats) {
   EXPECT_THROW(write_quad_mesh(path("out.stl"), cube()), InvalidInput);
   EXPECT_THROW(write_quad_mesh(path("no/such/dir/out.ply"), cube()), InvalidInput);
   for (const auto& e : fs::directory_iterator(dir_)) ADD_FAILURE() << "left behind: " << e.path();
-  // Written, but not renamed onto a folder of that name: the written file goes too.
-  fs::create_directories(path("taken.ply/inside"));
-  try {
-    write_quad_mesh(path("taken.ply"), cube());
-    ADD_FAILURE() << "written over a folder";
-  } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("taken.ply: cannot be written ("), std::string::npos) << e.what();
+  // Written, but not renamed onto a folder of that name: the written file goes too, and
+  // so does an OBJ's material file, written before it.
+  for (const std::string name : {"taken.ply", "taken.obj"}) {
+    fs::create_directories(path(name + "/inside"));
+    try {
+      write_quad_mesh(path(name), cube(), {{}, std::vector<Colour>(6, Colour{1, 2, 3, 255})});
+      ADD_FAILURE() << "written over a folder";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(name + ": cannot be written ("), std::string::npos) << e.what();
+    }
+    for (const auto& e : fs::directory_iterator(dir_))
+      if (e.path().filename() != name) ADD_FAILURE() << "left behind: " << e.path();
+    fs::remove_all(path(name));
   }
-  for (const auto& e : fs::directory_iterator(dir_))
-    if (e.path().filename() != "taken.ply") ADD_FAILURE() << "left behind: " << e.path();
-  fs::remove_all(path("taken.ply"));
   write_quad_mesh(path("cube.ply"), cube());
   std::size_t files = 0;
   for (const auto& e : fs::directory_iterator(dir_)) files += e.is_regular_file();

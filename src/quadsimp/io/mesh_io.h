@@ -17,7 +17,8 @@ namespace qs {
 //! faux-edge face flags (PLY saved with per-face flags); other polygons as triangles.
 //! Vertex colours come back too (MeshFile::colours): PLY's, COFF's, and OBJ's
 //! `v x y z r g b` (MeshLab's extension), where every vertex has one; and face colours
-//! (MeshFile::triangle_colours and quad_colours): PLY's and OFF's, where every face has one.
+//! (MeshFile::triangle_colours and quad_colours): PLY's, OFF's, and OBJ's materials'
+//! diffuse colours, where every face has one.
 //! \throw InvalidInput "PATH: reason" for unreadable, truncated or unknown files.
 MeshFile read_mesh(const std::string& path);
 
@@ -28,9 +29,9 @@ struct QuadColours {
 };
 
 //! Writes the quads of `mesh` as PLY (ASCII), OBJ or OFF, chosen by extension, with
-//! their `colours` if given (OBJ: the vertices' after the coordinates, as MeshLab writes
-//! them, and no face colours). The file appears atomically: written to a temporary
-//! beside it, then renamed.
+//! their `colours` if given (OBJ, as MeshLab writes them: the vertices' after the
+//! coordinates, the faces' as materials in PATH.mtl). The file appears atomically:
+//! written to a temporary beside it, then renamed.
 //! \throw InvalidInput for an unknown extension or a file that cannot be written.
 void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadColours& colours = {});
 

@@ -4,13 +4,60 @@
 // 0, followed face corners naming no vertex into memory it did not own (a crash),
 // dropped a triangle naming a later vertex without a word, and read a comment after a
 // face's corners as more corners. It also took 2.7 s on a 1.1M-triangle file.
+#include <filesystem>
+#include <optional>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "quadsimp/io/text_lines.h"
 #include "quadsimp/io/text_readers.h"
 
 namespace qs {
+namespace {
+
+// A name that may hold spaces: the fields from the second on.
+std::string name_on(const detail::TextLines& line) {
+  std::string name;
+  for (std::size_t i = 1; i < line.size(); ++i) (name += i > 1 ? " " : "") += line[i];
+  return name;
+}
+
+// The diffuse colours (Kd, and d as alpha) of an .mtl file's materials, into `colours` by
+// name, as MeshLab reads face colours from OBJ. A material with a diffuse texture
+// (map_Kd) gets none: its faces' colours are the texture's. A file that cannot be read
+// adds nothing (its faces then have no colour, and the mesh none).
+void read_materials(const std::string& path, std::unordered_map<std::string, Colour>& colours) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return;
+  detail::TextLines in(path);
+  std::string name;
+  std::optional<Colour> colour;
+  bool textured = false;
+  const auto keep = [&] {
+    if (!name.empty() && colour && !textured) colours[name] = *colour;
+  };
+  while (in.next()) {
+    const std::string_view kw = in[0];
+    if (kw == "newmtl") {
+      keep();
+      name = name_on(in), colour.reset(), textured = false;
+    } else if (kw == "Kd") {
+      Colour c;
+      const std::uint8_t alpha = colour ? (*colour)[3] : 255;
+      colour = in.colour(1, true, c) ? std::optional<Colour>(c) : std::nullopt;
+      if (colour) (*colour)[3] = alpha;
+    } else if (kw == "d" && in.size() == 2 && colour) {
+      double d;
+      if (parse_number(in[1], d)) (*colour)[3] = colour_byte(255 * d);
+    } else if (kw == "map_Kd") {
+      textured = true;
+    }
+  }
+  keep();
+}
+
+}  // namespace
 
 MeshFile read_obj(const std::string& path) {
   detail::TextLines in(path);
@@ -21,6 +68,11 @@ MeshFile read_obj(const std::string& path) {
   bool coloured = true;
   std::vector<std::array<Index, 3>> triangles;
   std::vector<std::uint8_t> faux;
+  // Face colours from the materials' diffuse colours; kept only if every face has one.
+  std::unordered_map<std::string, Colour> materials;
+  std::optional<Colour> material;
+  std::vector<Colour> face_colours;
+  bool face_coloured = true;
   std::vector<Index> corners;
   const auto n = [&positions] { return static_cast<long long>(positions.size()); };
   while (in.next()) {
@@ -43,10 +95,20 @@ MeshFile read_obj(const std::string& path) {
         corners.push_back(Index(index));
       }
       if (qobj && corners.size() != 4) in.fail("a QOBJ quad ('q') with " + std::to_string(corners.size()) + " corners");
-      detail::fan(corners.data(), corners.size(), triangles, faux);  // fewer than three corners: no face
+      if (corners.size() < 3) continue;  // fewer than three corners: no face
+      detail::fan(corners.data(), corners.size(), triangles, faux);
+      if (face_coloured && (face_coloured = material.has_value())) face_colours.resize(triangles.size(), *material);
+    } else if (kw == "mtllib") {
+      // Material files are named relative to the OBJ's folder.
+      const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+      for (std::size_t i = 1; i < in.size(); ++i) read_materials((folder / std::string(in[i])).string(), materials);
+    } else if (kw == "usemtl") {
+      const auto it = materials.find(name_on(in));
+      material = it != materials.end() ? std::optional<Colour>(it->second) : std::nullopt;
     }
   }
-  MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux);
+  if (!face_coloured) face_colours.clear();
+  MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, face_colours);
   if (coloured) out.colours = std::move(colours);
   return out;
 }

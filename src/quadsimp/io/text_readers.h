@@ -16,7 +16,8 @@ namespace qs {
 MeshFile read_off(const std::string& path);
 
 //! OBJ: "v" and "f" lines (corners from 1, or back from -1; "q": QOBJ's zero-based
-//! quads); normals, texture coordinates, groups and materials ignored.
+//! quads), vertex colours after the coordinates, and face colours from the materials'
+//! diffuse colours; normals, texture coordinates and groups ignored.
 MeshFile read_obj(const std::string& path);
 
 //! PLY, ASCII or binary: vertex x, y, z and colours, the faces' corner lists, flags and
