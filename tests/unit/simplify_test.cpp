@@ -1333,6 +1333,22 @@ TEST(Simplify, a_strip_one_quad_wide_shortens_by_chord_collapses) {
   EXPECT_GT(simplify(without.quads, ref, opt).faces, 50u);
 }
 
+TEST(Simplify, border_coarsening_stops_at_the_target) {
+  // Cells four times as tall as wide: the borders along x have edges short enough to
+  // coarsen from the start, and one pass of border coarsening (after the first 64
+  // collapses) took its ears all along them: asked for 1,530 of the 1,600 quads, the run
+  // ended at 1,484.
+  Case c = prepare(tri_grid(80, 20));  // the unit square
+  ASSERT_EQ(c.quads.n_faces(), 1600u);
+  const ReferenceSurface ref(c.tri);
+  SimplifyOptions opt;
+  opt.target_faces = 1530;
+  opt.check_invariants = true;
+  const SimplifyReport r = simplify(c.quads, ref, opt);
+  EXPECT_GT(r.border_collapses, 0u);
+  EXPECT_EQ(c.quads.n_faces(), 1530u);
+}
+
 TEST(Simplify, a_strip_keeps_its_last_quad_and_its_corners) {
   // The strip above asked for one quad: chord collapses across it leave one, the whole
   // piece, whose corners all turn alike. The springs then slid two of them together (the
