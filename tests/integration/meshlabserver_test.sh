@@ -79,6 +79,15 @@ for k in ("homeometry_min", "homeometry_max", "mean_edge", "hausdorff_e3", "rms_
     assert abs(a[k] - b[k]) <= 0.01 * max(abs(a[k]), 1e-9), (k, a[k], b[k])
 print("ok: plugin and CLI agree:", {k: a[k] for k in ("faces", "regular_percent", "rms_e3")})
 PY
+# ... and MeshLab reads the CLI's file (binary PLY of doubles, quads as polygons) as its
+# quads: saved again with faux flags, it holds the same 3000.
+if server -i "$work/cli.ply" -o "$work/cli_resaved.ply" -m ff &&
+   "$cli" stats "$bunny" "$work/cli_resaved.ply" --json --samples 20000 >"$work/cli_resaved.json" &&
+   [ "$(json "$work/cli_resaved.json" faces)" = 3000 ] && [ "$(json "$work/cli_resaved.json" pure_quad)" = True ]; then
+  echo "ok: MeshLab reads the CLI's PLY as 3000 quads"
+else
+  fail "MeshLab did not read the CLI's PLY as its quads"; cat "$work/server.log"
+fi
 
 # Runs the example script with some switches turned on, and the CLI with the matching
 # options, on the bunny: $work/NAME.json and $work/cli_NAME.json hold their stats.

@@ -377,6 +377,26 @@ def test_saved_files_keep_the_quads(bunny_path, cli, tmp_path):
         assert stats["pure_quad"] and stats["faces"] == 1000, name
 
 
+def test_the_clis_files_load_with_their_quads_and_colours(bunny_path, cli, tmp_path):
+    """The CLI's PLY (binary), OFF and OBJ (with its material file) load in MeshLab with their quads, vertex
+    colours and face colours."""
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(bunny_path)
+    colour_by_position(ms)
+    colour_faces_by_half(ms)
+    ms.save_current_mesh(str(tmp_path / "coloured.ply"), save_vertex_color=True, save_face_color=True)
+    for name in ("q.ply", "q.off", "q.obj"):
+        subprocess.run([cli, "simplify", str(tmp_path / "coloured.ply"), str(tmp_path / name), "--faces", "700", "-q"],
+                       check=True, stdout=subprocess.DEVNULL)
+        ms.load_new_mesh(str(tmp_path / name))
+        out = ms.current_mesh()
+        assert len(out.polygonal_face_list()) == 700 and is_pure_quad(out), name
+        assert out.has_face_color(), name
+        c = out.face_color_matrix()
+        assert ((c[:, 0] == 1) | (c[:, 2] == 1)).all() and (c[:, 0] == 1).any() and (c[:, 2] == 1).any(), name
+        assert out.has_vertex_color() and np.ptp(out.vertex_color_matrix()[:, 0]) > 0.5, name
+
+
 def test_quads_from_meshlabs_own_triangle_pairing(bunny_path):
     # MeshLab's smart pairing leaves doublets (two quads on two shared edges) that a
     # split along each quad's shorter diagonal turned into a non-manifold edge.

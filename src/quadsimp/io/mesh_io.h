@@ -28,7 +28,7 @@ struct QuadColours {
   std::vector<Colour> faces;
 };
 
-//! Writes the quads of `mesh` as PLY (ASCII), OBJ or OFF, chosen by extension, with
+//! Writes the quads of `mesh` as PLY (binary), OBJ or OFF, chosen by extension, with
 //! their `colours` if given (OBJ, as MeshLab writes them: the vertices' after the
 //! coordinates, the faces' as materials in PATH.mtl). The file appears atomically:
 //! written to a temporary beside it, then renamed.

@@ -1,0 +1,192 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Quads are written here, not by vcglib: its OBJ writer printed coordinates with 16 fixed
+// decimals (a mesh in units of 1e-9 kept 7 significant digits), and its PLY and OFF
+// writers with 16 significant digits, one short of what reads back to the same double;
+// its binary PLY writer wrote every polygon as a triangle. PLY is written in binary
+// (doubles, exact, half the size of text), OFF and OBJ with each coordinate in the
+// shortest form that reads back to the same double.
+#include <charconv>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "quadsimp/io/atomic_file.h"
+#include "quadsimp/io/mesh_io.h"
+
+namespace qs {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& why) {
+  throw InvalidInput(path + ": " + why);
+}
+
+// The live vertices' numbers in the file, from `first` (tombstones skipped, ids in order).
+std::vector<Index> file_ids(const QuadMesh& q, Index first) {
+  std::vector<Index> id(q.vertex_capacity(), kNone);
+  Index n = first;
+  for (Index v = 0; v < q.vertex_capacity(); ++v)
+    if (q.is_vertex_live(v)) id[v] = n++;
+  return id;
+}
+
+// A coordinate in the shortest form that reads back to the same double.
+void put_number(std::ostream& out, double x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  out << std::string_view(buf, std::size_t(r.ptr - buf));
+}
+
+// A colour channel as the fraction OBJ and MTL files write.
+std::string fraction(std::uint8_t channel) { return std::to_string(channel / 255.0); }
+
+// Values appended to `data` in little-endian order, whatever the host's.
+template <class T>
+void put_le(std::string& data, T value) {
+  unsigned char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  const std::uint16_t probe = 1;
+  const bool little = *reinterpret_cast<const unsigned char*>(&probe) == 1;
+  for (std::size_t i = 0; i < sizeof(T); ++i) data += char(bytes[little ? i : sizeof(T) - 1 - i]);
+}
+
+const char* const kColourProperties = "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                                      "property uchar alpha\n";
+
+void write_ply(const std::string& path, const QuadMesh& q, const QuadColours& colours) {
+  std::string data = "ply\nformat binary_little_endian 1.0\ncomment quadsimp\nelement vertex " +
+                     std::to_string(q.n_vertices()) + "\nproperty double x\nproperty double y\nproperty double z\n";
+  if (!colours.vertices.empty()) data += kColourProperties;
+  data += "element face " + std::to_string(q.n_faces()) + "\nproperty list uchar int vertex_indices\n";
+  if (!colours.faces.empty()) data += kColourProperties;
+  data += "end_header\n";
+  data.reserve(data.size() + std::size_t(q.n_vertices()) * 28 + std::size_t(q.n_faces()) * 21);
+  for (Index v = 0; v < q.vertex_capacity(); ++v) {
+    if (!q.is_vertex_live(v)) continue;
+    for (int k = 0; k < 3; ++k) put_le(data, q.position(v)[k]);
+    if (!colours.vertices.empty()) data.append(reinterpret_cast<const char*>(colours.vertices[v].data()), 4);
+  }
+  const std::vector<Index> id = file_ids(q, 0);
+  for (Index f = 0; f < q.face_capacity(); ++f) {
+    if (!q.is_face_live(f)) continue;
+    data += char(4);
+    for (Index k = 0; k < 4; ++k) put_le(data, std::int32_t(id[q.vertex(f, k)]));
+    if (!colours.faces.empty()) data.append(reinterpret_cast<const char*>(colours.faces[f].data()), 4);
+  }
+  std::ofstream out(path, std::ios::binary);
+  if (!out.write(data.data(), std::streamsize(data.size())).flush()) fail(path, "cannot be written");
+}
+
+// OFF: COFF's vertex colours after the coordinates, a face's after its corners (bytes,
+// alpha included: MeshLab reads both).
+void write_off(const std::string& path, const QuadMesh& q, const QuadColours& colours) {
+  std::ofstream out(path, std::ios::binary);
+  const auto put_colour = [&out](const Colour& c) {
+    for (const std::uint8_t channel : c) out << ' ' << unsigned(channel);
+  };
+  out << (colours.vertices.empty() ? "OFF\n" : "COFF\n") << q.n_vertices() << ' ' << q.n_faces() << " 0\n";
+  for (Index v = 0; v < q.vertex_capacity(); ++v) {
+    if (!q.is_vertex_live(v)) continue;
+    for (int k = 0; k < 3; ++k) put_number(out << (k ? " " : ""), q.position(v)[k]);
+    if (!colours.vertices.empty()) put_colour(colours.vertices[v]);
+    out << '\n';
+  }
+  const std::vector<Index> id = file_ids(q, 0);
+  for (Index f = 0; f < q.face_capacity(); ++f) {
+    if (!q.is_face_live(f)) continue;
+    out << '4';
+    for (Index k = 0; k < 4; ++k) out << ' ' << id[q.vertex(f, k)];
+    if (!colours.faces.empty()) put_colour(colours.faces[f]);
+    out << '\n';
+  }
+  if (!out.flush()) fail(path, "cannot be written");
+}
+
+// OBJ, with vertex colours after the coordinates as fractions (the extension MeshLab reads
+// and writes), and face colours as materials, one per colour, in the file `mtl` (named as
+// it is, beside the OBJ), as MeshLab writes them.
+void write_obj(const std::string& path, const QuadMesh& q, const QuadColours& colours, const std::string& mtl,
+               const std::map<Colour, int>& materials) {
+  std::ofstream out(path, std::ios::binary);
+  out << "# quadsimp: " << q.n_vertices() << " vertices, " << q.n_faces() << " quads\n";
+  if (!materials.empty()) out << "mtllib " << mtl << '\n';
+  for (Index v = 0; v < q.vertex_capacity(); ++v) {
+    if (!q.is_vertex_live(v)) continue;
+    out << 'v';
+    for (int k = 0; k < 3; ++k) put_number(out << ' ', q.position(v)[k]);
+    if (!colours.vertices.empty())
+      for (std::size_t k = 0; k < 3; ++k) out << ' ' << fraction(colours.vertices[v][k]);
+    out << '\n';
+  }
+  const std::vector<Index> id = file_ids(q, 1);  // OBJ counts from 1
+  int material = -1;
+  for (Index f = 0; f < q.face_capacity(); ++f) {
+    if (!q.is_face_live(f)) continue;
+    if (!materials.empty() && materials.at(colours.faces[f]) != material)
+      out << "usemtl material_" << (material = materials.at(colours.faces[f])) << '\n';
+    out << 'f';
+    for (Index k = 0; k < 4; ++k) out << ' ' << id[q.vertex(f, k)];
+    out << '\n';
+  }
+  if (!out.flush()) fail(path, "cannot be written");
+}
+
+// The materials of write_obj(): one per face colour, numbered in the order they come.
+std::map<Colour, int> materials_of(const QuadMesh& q, const std::vector<Colour>& face_colours) {
+  std::map<Colour, int> materials;
+  for (Index f = 0; f < q.face_capacity() && !face_colours.empty(); ++f)
+    if (q.is_face_live(f)) materials.emplace(face_colours[f], int(materials.size()));
+  return materials;
+}
+
+void write_mtl(const std::string& path, const std::map<Colour, int>& materials) {
+  std::vector<const Colour*> by_number(materials.size());
+  for (const auto& [colour, k] : materials) by_number[std::size_t(k)] = &colour;
+  std::ofstream out(path, std::ios::binary);
+  out << "# quadsimp: the quads' face colours\n";
+  for (std::size_t k = 0; k < by_number.size(); ++k) {
+    const Colour& c = *by_number[k];
+    out << "newmtl material_" << k << "\nKd " << fraction(c[0]) << ' ' << fraction(c[1]) << ' ' << fraction(c[2])
+        << "\nd " << fraction(c[3]) << '\n';
+  }
+  if (!out.flush()) fail(path, "cannot be written");
+}
+
+}  // namespace
+
+void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadColours& colours) {
+  const std::string ext = extension_of(path);
+  if (ext != "ply" && ext != "obj" && ext != "off")
+    fail(path, "cannot write '" + ext + "' (quads are written as .ply, .obj or .off)");
+  if (!colours.vertices.empty() && colours.vertices.size() != mesh.vertex_capacity())
+    throw std::invalid_argument("write_quad_mesh: one colour per vertex id expected");
+  if (!colours.faces.empty() && colours.faces.size() != mesh.face_capacity())
+    throw std::invalid_argument("write_quad_mesh: one colour per face id expected");
+  // An OBJ's face colours go to a material file beside it, written first, and removed if
+  // the OBJ cannot be.
+  const std::map<Colour, int> materials = ext == "obj" ? materials_of(mesh, colours.faces) : std::map<Colour, int>();
+  const std::string mtl = path + ".mtl";
+  if (!materials.empty()) detail::write_atomically(mtl, [&](const std::string& tmp) { write_mtl(tmp, materials); });
+  try {
+    detail::write_atomically(path, [&](const std::string& tmp) {
+      if (ext == "ply")
+        write_ply(tmp, mesh, colours);
+      else if (ext == "obj")
+        write_obj(tmp, mesh, colours, std::filesystem::path(mtl).filename().string(), materials);
+      else
+        write_off(tmp, mesh, colours);
+    });
+  } catch (...) {
+    std::error_code ec;
+    if (!materials.empty()) std::filesystem::remove(mtl, ec);
+    throw;
+  }
+}
+
+}  // namespace qs
