@@ -114,7 +114,8 @@ int run_simplify(const SimplifyArgs& a) {
     std::cerr << "quadsimp simplify: " << err << "\n";
     return kBadArguments;
   }
-  const SimplifyParams& params = a.params;
+  SimplifyParams params = a.params;
+  if (a.faces_percent > 0) params.target_faces = 1;  // a share: counted once the quads are known
   if (const std::string why = check_params(params); !why.empty()) {
     std::cerr << "quadsimp simplify: " << why << " (see --help)\n";
     return kBadArguments;
@@ -123,6 +124,8 @@ int run_simplify(const SimplifyArgs& a) {
     const auto t0 = std::chrono::steady_clock::now();
     const LogFn log = stderr_log(a.quiet);
     Input in = load_input(a.input, {}, log);
+    if (a.faces_percent > 0)
+      params.target_faces = std::max<Index>(1, Index(std::lround(a.faces_percent / 100 * in.quads.n_faces())));
     const ReferenceSurface ref(std::move(in.reference));
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
     write_quad_mesh(a.output, in.quads, colours_of_quads(in.colour_source, in.quads));

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <limits>
 #include <string>
+#include <string_view>
 
 #include "cli/commands.h"
 #include "quadsimp/util/parse_number.h"
@@ -30,6 +31,21 @@ CLI::Validator face_count_or_auto() {
       [](std::string& s) -> std::string {
         if (s == "auto" || not_a_whole_number_from_one(s).empty()) return {};
         return "'" + s + "' is neither a whole number from 1 nor 'auto'";
+      },
+      "");
+}
+
+// --faces: "N", or "P%" of the quads the input converts to.
+CLI::Validator face_count_or_share() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        double share = 0;
+        if (!s.empty() && s.back() == '%') {
+          if (qs::parse_number(std::string_view(s).substr(0, s.size() - 1), share) && share > 0 && share <= 100)
+            return {};
+          return "'" + s + "' is not a share above 0% and at most 100%";
+        }
+        return not_a_whole_number_from_one(s);
       },
       "");
 }
@@ -62,7 +78,18 @@ int main(int argc, char** argv) {
   auto* s = app.add_subcommand("simplify", "Simplify a triangle or quad mesh into a coarser pure quad mesh");
   s->add_option("IN", simp.input, "input mesh (PLY, OBJ, OFF, STL; triangles or quads)")->required()->check(CLI::ExistingFile);
   s->add_option("OUT", simp.output, "output quad mesh (.ply, .obj or .off)")->required();
-  s->add_option("-f,--faces", simp.params.target_faces, "target number of quads")->check(whole_number_from_one());
+  s->add_option_function<std::string>(
+       "-f,--faces",
+       [&simp](const std::string& v) {
+         // Checked by the validator: a whole number, or a share of (0, 100] with '%'.
+         if (v.back() == '%')
+           qs::parse_number(std::string_view(v).substr(0, v.size() - 1), simp.faces_percent);
+         else
+           qs::parse_number(v, simp.params.target_faces);
+       },
+       "target number of quads, or a share of the input's quads (10%)")
+      ->type_name("N|P%")
+      ->check(face_count_or_share());
   s->add_flag("--adaptive", simp.params.adaptive, "adaptive mode driven by fitmaps");
   s->add_flag("--auto-halt", simp.params.auto_halt,
               "adaptive: stop once the faces whose collapses the M-fitmap (or --reach) refuses cover --halt-share of the "

@@ -238,6 +238,9 @@ TEST_F(Cli, bad_arguments_exit_2) {
   for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
            {"simplify " + input_ + " " + p("o.ply") + " --faces 0", "--faces: '0' is not a whole number from 1"},
            {"simplify " + input_ + " " + p("o.ply") + " --faces 2.5", "--faces: '2.5' is not a whole number from 1"},
+           {"simplify " + input_ + " " + p("o.ply") + " --faces 0%", "--faces: '0%' is not a share above 0%"},
+           {"simplify " + input_ + " " + p("o.ply") + " --faces 100.5%", "'100.5%' is not a share above 0% and at most 100%"},
+           {"simplify " + input_ + " " + p("o.ply") + " --faces ten%", "--faces: 'ten%' is not a share"},
            {"simplify " + input_ + " " + p("o.ply") + " --faces 10 --m-factor 0", "--m-factor: '0' is not a number above 0"},
            {"stats " + input_ + " " + input_ + " --samples 0", "--samples: '0' is not a whole number from 1"}}) {
     const CliRun r = run(args);
@@ -258,6 +261,24 @@ TEST_F(Cli, bad_arguments_exit_2) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.out.find("quadsimp fitmap: the output must be a .ply file"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(p("f.obj")));
+}
+
+// --faces P% asks for that share of the quads the input converts to, in either mode; with
+// automatic halting it is refused like a count.
+TEST_F(Cli, faces_as_a_share_of_the_input) {
+  for (const std::string mode : {"", " --adaptive"}) {
+    const CliRun r = run("simplify " + input_ + " " + p("s.ply") + " --faces 62.5% --json -q --samples 1000" + mode);
+    ASSERT_EQ(r.code, 0) << r.out;
+    const auto number = [&r](const std::string& key) {
+      const std::size_t at = r.out.find("\"" + key + "\": ");
+      return at == std::string::npos ? -1L : std::stol(r.out.substr(at + key.size() + 4));
+    };
+    ASSERT_GT(number("input_faces"), 100) << r.out;
+    EXPECT_EQ(number("faces"), std::lround(0.625 * double(number("input_faces")))) << mode;
+  }
+  const CliRun r = run("simplify " + input_ + " " + p("s.ply") + " --faces 10% --adaptive --auto-halt");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("give either a target number of faces or automatic halting"), std::string::npos) << r.out;
 }
 
 TEST_F(Cli, simplify_stats_and_fitmap) {
