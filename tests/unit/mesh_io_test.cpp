@@ -220,7 +220,7 @@ TEST_F(MeshIo, face_colours_round_trip_every_output_format) {
     colours[f] = {std::uint8_t(10 * f), std::uint8_t(255 - 7 * f), std::uint8_t(f % 3 * 100), std::uint8_t(200 + f)};
   for (const char* ext : {"ply", "off", "obj"}) {
     SCOPED_TRACE(ext);
-    const std::string p = path(std::string("faces.") + ext);
+    const std::string p = path(std::string("face colours.") + ext);  // a space: the OBJ's material file's too
     write_quad_mesh(p, m, {{}, colours});
     const MeshFile f = read_mesh(p);
     ASSERT_EQ(f.quads.size(), m.n_faces());

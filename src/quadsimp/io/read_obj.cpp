@@ -99,9 +99,11 @@ MeshFile read_obj(const std::string& path) {
       detail::fan(corners.data(), corners.size(), triangles, faux);
       if (face_coloured && (face_coloured = material.has_value())) face_colours.resize(triangles.size(), *material);
     } else if (kw == "mtllib") {
-      // Material files are named relative to the OBJ's folder.
+      // Material files are named relative to the OBJ's folder, several to a line, or one
+      // whose name has spaces (as we and MeshLab write an OBJ's named so).
       const std::filesystem::path folder = std::filesystem::path(path).parent_path();
       for (std::size_t i = 1; i < in.size(); ++i) read_materials((folder / std::string(in[i])).string(), materials);
+      if (in.size() > 2) read_materials((folder / name_on(in)).string(), materials);
     } else if (kw == "usemtl") {
       const auto it = materials.find(name_on(in));
       material = it != materials.end() ? std::optional<Colour>(it->second) : std::nullopt;
