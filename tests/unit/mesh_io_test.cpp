@@ -175,37 +175,31 @@ QuadMesh grid_with_a_tombstone() {
 // fields after a face's corners go to the faces made of that face; a quad made of two
 // flagged triangles takes the first's.
 TEST_F(MeshIo, face_colours_are_read_from_ply_and_off) {
-  const std::string ply = write("faces.ply",
-                                "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
-                                "property float z\nelement face 3\nproperty uchar green\n"
-                                "property list uchar int vertex_indices\nproperty uchar red\nproperty uchar blue\n"
-                                "property uchar alpha\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n2 1 0\n"
-                                "2 3 0 1 2 1 3 4\n20 4 1 4 5 2 10 30 40\n0 3 2 3 0 5 6 7\n");
-  const MeshFile p = read_mesh(ply);
+  const std::string six = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n2 1 0\n";
+  const std::string rgba = "property uchar green\nproperty uchar red\nproperty uchar blue\nproperty uchar alpha\n";
+  const MeshFile p = read_mesh(write("faces.ply", ply_header(6, 3, rgba) + six +
+                                                      "3 0 1 2 2 1 3 4\n4 1 4 5 2 20 10 30 40\n3 2 3 0 0 5 6 7\n"));
   ASSERT_EQ(p.triangles.size(), 2u);
   ASSERT_EQ(p.quads.size(), 1u);
   EXPECT_EQ(p.triangle_colours, (std::vector<Colour>{{1, 2, 3, 4}, {5, 0, 6, 7}}));
   EXPECT_EQ(p.quad_colours, (std::vector<Colour>{{10, 20, 30, 40}}));
   EXPECT_EQ(triangle_colours_of(p),
             (std::vector<Colour>{{1, 2, 3, 4}, {5, 0, 6, 7}, {10, 20, 30, 40}, {10, 20, 30, 40}}));
-  // MeshLab's triangle pairs (faux flags) as fractions; a pentagon's three triangles.
-  const MeshFile f = read_mesh(write("pairs.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
-                                                  "property float y\nproperty float z\nelement face 2\n"
-                                                  "property list uchar int vertex_indices\nproperty int flags\n"
-                                                  "property float red\nproperty float green\nproperty float blue\n"
-                                                  "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
-                                                  "3 0 1 2 1048576 1 0 0\n3 0 2 3 262144 0 0 1\n"));
+  // MeshLab's triangle pairs (faux flags), colours as fractions.
+  const std::string fractions = "property int flags\nproperty float red\nproperty float green\nproperty float blue\n";
+  const MeshFile f = read_mesh(write("pairs.ply", ply_header(4, 2, fractions) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+                                                      "3 0 1 2 1048576 1 0 0\n3 0 2 3 262144 0 0 1\n"));
   ASSERT_EQ(f.quads.size(), 1u);
   EXPECT_EQ(f.quad_colours, (std::vector<Colour>{{255, 0, 0, 255}}));
-  const std::string off = "OFF\n6 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n2 1 0\n"
-                          "3 0 1 2 1 2 3\n4 1 4 5 2 0.5 1 0 0.25\n5 0 1 4 5 3 9 8 7 6\n2 0 5\n";
+  // OFF: bytes, fractions (one field with a decimal point makes all four so), and a
+  // pentagon's three triangles; an edge (two corners) is no face.
+  const std::string off = "OFF\n6 4 0\n" + six + "3 0 1 2 1 2 3\n4 1 4 5 2 0.5 1 0 0.25\n5 0 1 4 5 3 9 8 7 6\n2 0 5\n";
   const MeshFile o = read_mesh(write("faces.off", off));
   EXPECT_EQ(o.triangle_colours, (std::vector<Colour>{{1, 2, 3, 255}, {9, 8, 7, 6}, {9, 8, 7, 6}, {9, 8, 7, 6}}));
   EXPECT_EQ(o.quad_colours, (std::vector<Colour>{{128, 255, 0, 64}}));
   // Not every face coloured, or an index into a colour map: no face colours.
   for (const std::string faces : {"3 0 1 2 1 2 3\n4 1 4 5 2\n", "3 0 1 2 7\n4 1 4 5 2 7\n"}) {
-    const MeshFile none = read_mesh(write("part.off", "OFF\n6 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n2 1 0\n" +
-                                                          faces));
+    const MeshFile none = read_mesh(write("part.off", "OFF\n6 2 0\n" + six + faces));
     EXPECT_FALSE(none.has_face_colours()) << faces;
     EXPECT_TRUE(triangle_colours_of(none).empty());
   }
