@@ -56,11 +56,16 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
   const bool coloured = vertex_coloured || face_coloured;
   const int colour_mask =
       (vertex_coloured ? int(Model::MM_VERTCOLOR) : 0) | (face_coloured ? int(Model::MM_FACECOLOR) : 0);
+  // The layer's texture coordinates are not carried to the quads: the log says so.
+  const auto layer_file = [&] {
+    MeshFile file = mesh_file_of(m->cm);
+    file.texture_coordinates = m->hasDataMask(Model::MM_WEDGTEXCOORD) || m->hasDataMask(Model::MM_VERTTEXCOORD);
+    return file;
+  };
   Outcome out;
   switch (id) {
     case kSimplify: {
-      const QuadMesh q =
-          run_simplification(mesh_file_of(m->cm), name, simplify_params_of(params), progress_of(cb), out);
+      const QuadMesh q = run_simplification(layer_file(), name, simplify_params_of(params), progress_of(cb), out);
       auto* result = md.addNewMesh("", QString::fromStdString(name + " quads"), true);
       assign_quads(result->cm, q);
       if (coloured) {
@@ -72,7 +77,7 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
       break;
     }
     case kConvert: {
-      const QuadMesh q = run_conversion(mesh_file_of(m->cm), name, out);
+      const QuadMesh q = run_conversion(layer_file(), name, out);
       std::optional<SurfaceColours<Mesh>> colours;
       if (coloured) colours.emplace(m->cm, vertex_coloured, face_coloured);
       assign_quads(m->cm, q);

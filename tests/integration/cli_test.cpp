@@ -226,6 +226,17 @@ TEST_F(Cli, face_colours_reach_the_quads) {
   EXPECT_TRUE(fs::exists(p("a.obj.mtl")));
 }
 
+// Texture coordinates are not carried: the log says so, and names MeshLab's transfer.
+TEST_F(Cli, texture_coordinates_left_behind_are_logged) {
+  const std::string obj = write("t.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\n"
+                                         "f 1/1 2/2 3/2\nf 1/1 3/2 4/1\n");
+  const CliRun r = run("convert " + obj + " " + p("t.ply"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("its texture coordinates are not carried to the quads; MeshLab's \"Transfer: Texture to "
+                       "Vertex Color"), std::string::npos) << r.out;
+  EXPECT_EQ(run("convert " + input_ + " " + p("s.ply")).out.find("not carried"), std::string::npos);
+}
+
 TEST_F(Cli, bad_arguments_exit_2) {
   EXPECT_EQ(run("").code, 2);
   EXPECT_EQ(run("convert").code, 2);

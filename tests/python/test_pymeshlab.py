@@ -269,6 +269,21 @@ def test_a_layer_of_one_colour_gives_quads_of_that_colour():
     assert np.abs(out.vertex_color_matrix() - colour).max() < 1 / 255
 
 
+def test_a_textured_layer_is_told_how_to_colour_its_quads(capfd):
+    """Texture coordinates are not carried; the log says so and names MeshLab's transfer, which then colours
+    the quads from the texture (pymeshlab's textured bunny: one texture, per-wedge coordinates)."""
+    sample = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny10k_textured.obj"
+    ms = pymeshlab.MeshSet(verbose=True)
+    ms.load_new_mesh(str(sample))
+    assert ms.current_mesh().has_wedge_tex_coord()
+    ms.meshing_quad_mesh_simplification(targetfacenum=600)
+    assert "its texture coordinates are not carried to the quads" in capfd.readouterr().err
+    ms.transfer_texture_to_color_per_vertex(sourcemesh=0, targetmesh=1)
+    # The texture is a test card of a few flat colours (greys, red, green, blue).
+    colours = ms.mesh(1).vertex_color_matrix()
+    assert len(np.unique(np.round(colours[:, :3], 3), axis=0)) >= 4
+
+
 def test_conversion_keeps_the_layers_colours(bunny_path):
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(bunny_path)

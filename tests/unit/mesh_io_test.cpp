@@ -205,6 +205,27 @@ TEST_F(MeshIo, face_colours_are_read_from_ply_and_off) {
   }
 }
 
+// Texture coordinates are not carried to the quads, but a file that has them says so (the
+// log then tells the user): OBJ's vt lines, PLY's per-vertex or per-corner coordinates
+// (MeshLab writes texture_u and texture_v, or a face's texcoord list), and STOFF.
+TEST_F(MeshIo, texture_coordinates_are_noticed) {
+  const std::string square = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+  EXPECT_TRUE(read_mesh(write("t.obj", obj_vertices(square) + "vt 0 0\nf 1/1 2/1 3/1 4/1\n")).texture_coordinates);
+  EXPECT_FALSE(read_mesh(write("p.obj", obj_vertices(square) + "f 1 2 3 4\n")).texture_coordinates);
+  const std::string uv = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                         "property float z\nproperty float texture_u\nproperty float texture_v\nelement face 1\n"
+                         "property list uchar int vertex_indices\nend_header\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n"
+                         "0 1 0 0 1\n4 0 1 2 3\n";
+  EXPECT_TRUE(read_mesh(write("v.ply", uv)).texture_coordinates);
+  const std::string wedges = ply_header(4, 1, "property list uchar float texcoord\n") + square +
+                             "4 0 1 2 3 8 0 0 1 0 1 1 0 1\n";
+  EXPECT_TRUE(read_mesh(write("w.ply", wedges)).texture_coordinates);
+  EXPECT_FALSE(read_mesh(write("p.ply", ply_header(4, 1) + square + "4 0 1 2 3\n")).texture_coordinates);
+  EXPECT_TRUE(read_mesh(write("t.off", "STOFF\n4 1 0\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n"))
+                  .texture_coordinates);
+  EXPECT_FALSE(read_mesh(write("p.off", "OFF\n4 1 0\n" + square + "4 0 1 2 3\n")).texture_coordinates);
+}
+
 // Face colours written with the quads read back the same from PLY, OFF and OBJ (as
 // materials in a file beside it).
 TEST_F(MeshIo, face_colours_round_trip_every_output_format) {

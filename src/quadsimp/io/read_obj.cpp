@@ -73,6 +73,7 @@ MeshFile read_obj(const std::string& path) {
   std::optional<Colour> material;
   std::vector<Colour> face_colours;
   bool face_coloured = true;
+  bool textured = false;
   std::vector<Index> corners;
   const auto n = [&positions] { return static_cast<long long>(positions.size()); };
   while (in.next()) {
@@ -98,6 +99,8 @@ MeshFile read_obj(const std::string& path) {
       if (corners.size() < 3) continue;  // fewer than three corners: no face
       detail::fan(corners.data(), corners.size(), triangles, faux);
       if (face_coloured && (face_coloured = material.has_value())) face_colours.resize(triangles.size(), *material);
+    } else if (kw == "vt") {
+      textured = true;
     } else if (kw == "mtllib") {
       // Material files are named relative to the OBJ's folder, several to a line, or one
       // whose name has spaces (as we and MeshLab write an OBJ's named so).
@@ -112,6 +115,7 @@ MeshFile read_obj(const std::string& path) {
   if (!face_coloured) face_colours.clear();
   MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, face_colours);
   if (coloured) out.colours = std::move(colours);
+  out.texture_coordinates = textured;
   return out;
 }
 

@@ -98,6 +98,7 @@ MeshFile read_off(const std::string& path) {
   if (!face_coloured) face_colours.clear();
   MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, face_colours);
   if (coloured) out.colours = std::move(colours);
+  out.texture_coordinates = prefix.find("ST") != std::string_view::npos;  // each vertex's after its position
   return out;
 }
 

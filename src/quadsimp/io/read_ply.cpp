@@ -245,7 +245,7 @@ MeshFile read_ply(const std::string& path) {
   };
   std::vector<long long> list;  // a strip's or a grid entry's indices (-1: none)
   std::vector<long long> grid;  // a range grid's vertex at each point, row by row (-1: none)
-  bool have_vertices = false, have_faces = false, have_grid = false;
+  bool have_vertices = false, have_faces = false, have_grid = false, textured = false;
   for (const Element& e : header.elements) {
     const bool vertex = e.name == "vertex", face = e.name == "face";
     const bool strips = e.name == "tristrips", range = e.name == "range_grid";
@@ -265,6 +265,10 @@ MeshFile read_ply(const std::string& path) {
     if (indexed && (list_at < 0 || !e.properties[std::size_t(list_at)].list))
       fail((face ? std::string("faces") : detail::quoted(e.name)) + " without a list of vertex indices");
     const int flags = face ? e.find("flags") : -1;
+    // Texture coordinates per vertex (MeshLab writes texture_u, texture_v) or per corner.
+    for (const char* uv : {"texture_u", "texture_s", "s", "u"})
+      textured |= vertex && e.find(uv) >= 0;
+    textured |= face && e.find("texcoord") >= 0;
     have_vertices |= vertex;
     have_faces |= face;
     have_grid |= range;
@@ -374,6 +378,7 @@ MeshFile read_ply(const std::string& path) {
   }
   MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, triangle_colours);
   out.colours = std::move(colours);
+  out.texture_coordinates = textured;
   return out;
 }
 

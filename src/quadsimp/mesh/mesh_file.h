@@ -27,6 +27,8 @@ struct MeshFile {
   //! Face colours: one per triangle and one per quad, or none.
   std::vector<Colour> triangle_colours = {};
   std::vector<Colour> quad_colours = {};
+  //! The file or layer has texture coordinates, which are not carried to the quads.
+  bool texture_coordinates = false;
   bool is_pure_quad() const { return !quads.empty() && triangles.empty(); }
   bool has_face_colours() const { return !triangle_colours.empty() || !quad_colours.empty(); }
 };
