@@ -54,10 +54,9 @@ class SurfaceColours {
   //! Keeps the colours of the mesh's vertices if `vertices`, of its faces if `faces`.
   SurfaceColours(Mesh& mesh, bool vertices, bool faces, Use use = Use::copy)
       : vertices_(vertices), faces_(faces) {
-    bool varied = false;
-    if (vertices) varied |= !one_colour(mesh.vert, vertex_colour_);
-    if (faces) varied |= !one_colour(mesh.face, face_colour_);
-    if (!varied) return;
+    if (vertices) keep_colours(mesh.vert, vertex_colour_);
+    if (faces) keep_colours(mesh.face, face_colour_);
+    if (!vertex_colour_.varied && !face_colour_.varied) return;
     // The grid indexes deleted faces too, hence the copy of the live part. vcglib's
     // point-to-triangle distance reads unit face normals, which a layer's may not be.
     if (use == Use::copy) {
@@ -117,16 +116,18 @@ class SurfaceColours {
     bool varied = false;
   };
 
-  // Whether the live elements have one colour, which `kept` then holds.
+  // The live elements' one colour, or that they vary.
   template <class Elements>
-  static bool one_colour(const Elements& elements, Kept& kept) {
+  static void keep_colours(const Elements& elements, Kept& kept) {
     bool seen = false;
     for (const auto& e : elements) {
       if (e.IsD()) continue;
       if (!seen) kept.colour = e.cC(), seen = true;
-      if (e.cC() != kept.colour) return !(kept.varied = true);
+      if (e.cC() != kept.colour) {
+        kept.varied = true;
+        return;
+      }
     }
-    return true;
   }
 
   const typename Mesh::FaceType* closest(const Coord& p, Coord& foot) {
