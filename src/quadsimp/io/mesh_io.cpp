@@ -26,9 +26,9 @@
 #include <wrap/io_trimesh/export_ply.h>
 #include <wrap/io_trimesh/import_stl.h>
 
-#include "quadsimp/io/text_readers.h"
 #include "quadsimp/io/atomic_file.h"
 #include "quadsimp/io/surface_colours.h"
+#include "quadsimp/io/text_readers.h"
 #include "quadsimp/util/errors.h"
 
 namespace qs {
