@@ -60,17 +60,26 @@ const char* const kColourProperties = "property uchar red\nproperty uchar green\
                                       "property uchar alpha\n";
 
 void write_ply(const std::string& path, const QuadMesh& q, const QuadColours& colours) {
+  std::ofstream out(path, std::ios::binary);
   std::string data = "ply\nformat binary_little_endian 1.0\ncomment quadsimp\nelement vertex " +
                      std::to_string(q.n_vertices()) + "\nproperty double x\nproperty double y\nproperty double z\n";
   if (!colours.vertices.empty()) data += kColourProperties;
   data += "element face " + std::to_string(q.n_faces()) + "\nproperty list uchar int vertex_indices\n";
   if (!colours.faces.empty()) data += kColourProperties;
   data += "end_header\n";
-  data.reserve(data.size() + std::size_t(q.n_vertices()) * 28 + std::size_t(q.n_faces()) * 21);
+  // Written a megabyte at a time: a copy of the whole file in memory would double a large
+  // result's footprint.
+  constexpr std::size_t kChunk = 1 << 20;
+  const auto spill = [&](std::size_t above) {
+    if (data.size() <= above) return;
+    out.write(data.data(), std::streamsize(data.size()));
+    data.clear();
+  };
   for (Index v = 0; v < q.vertex_capacity(); ++v) {
     if (!q.is_vertex_live(v)) continue;
     for (int k = 0; k < 3; ++k) put_le(data, q.position(v)[k]);
     if (!colours.vertices.empty()) data.append(reinterpret_cast<const char*>(colours.vertices[v].data()), 4);
+    spill(kChunk);
   }
   const std::vector<Index> id = file_ids(q, 0);
   for (Index f = 0; f < q.face_capacity(); ++f) {
@@ -78,9 +87,10 @@ void write_ply(const std::string& path, const QuadMesh& q, const QuadColours& co
     data += char(4);
     for (Index k = 0; k < 4; ++k) put_le(data, std::int32_t(id[q.vertex(f, k)]));
     if (!colours.faces.empty()) data.append(reinterpret_cast<const char*>(colours.faces[f].data()), 4);
+    spill(kChunk);
   }
-  std::ofstream out(path, std::ios::binary);
-  if (!out.write(data.data(), std::streamsize(data.size())).flush()) fail(path, "cannot be written");
+  spill(0);
+  if (!out.flush()) fail(path, "cannot be written");
 }
 
 // OFF: COFF's vertex colours after the coordinates, a face's after its corners (bytes,
