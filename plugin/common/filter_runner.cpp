@@ -47,7 +47,7 @@ QuadMesh run_simplification(MeshFile layer, const std::string& name, const Simpl
   o.log.push_back(format("quad mesh simplification: %g -> %g quads in %.2f s (", r.initial_faces, r.faces, s) +
                   operations_done(r) +
                   format("); regular %.1f%%, max valence %g", q.regular_percent, q.max_valence));
-  for (std::string& note : result_notes(r, q, params.target_faces)) o.log.push_back(std::move(note));
+  for (std::string& note : result_notes(r, q, r.target_faces)) o.log.push_back(std::move(note));
   o.values = {{"faces", q.faces}, {"vertices", q.vertices}, {"regular_percent", q.regular_percent},
               {"max_valence", q.max_valence}, {"seconds", s}};
   return std::move(in.quads);

@@ -113,6 +113,7 @@ SimplifyParams simplify_params_of(const ParameterList& params) {
   p.adaptive = params.getBool("Adaptive");
   p.auto_halt = params.getBool("AutoHalt");
   p.target_faces = p.adaptive && p.auto_halt ? 0 : Index(std::max(0, params.getInt("TargetFaceNum")));
+  p.target_share = p.adaptive && p.auto_halt ? 0 : params.getFloat("TargetPerc");
   p.halt_share = params.getFloat("HaltShare");
   p.tau = params.getFloat("Tau");
   p.max_aspect = params.getFloat("MaxAspect");

@@ -114,8 +114,7 @@ int run_simplify(const SimplifyArgs& a) {
     std::cerr << "quadsimp simplify: " << err << "\n";
     return kBadArguments;
   }
-  SimplifyParams params = a.params;
-  if (a.faces_percent > 0) params.target_faces = 1;  // a share: counted once the quads are known
+  const SimplifyParams& params = a.params;
   if (const std::string why = check_params(params); !why.empty()) {
     std::cerr << "quadsimp simplify: " << why << " (see --help)\n";
     return kBadArguments;
@@ -124,15 +123,13 @@ int run_simplify(const SimplifyArgs& a) {
     const auto t0 = std::chrono::steady_clock::now();
     const LogFn log = stderr_log(a.quiet);
     Input in = load_input(a.input, {}, log);
-    if (a.faces_percent > 0)
-      params.target_faces = std::max<Index>(1, Index(std::lround(a.faces_percent / 100 * in.quads.n_faces())));
     const ReferenceSurface ref(std::move(in.reference));
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
     write_quad_mesh(a.output, in.quads, colours_of_quads(in.colour_source, in.quads));
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads, &ref);
     if (log)
-      for (const std::string& note : result_notes(r, q, params.target_faces)) log(note);
+      for (const std::string& note : result_notes(r, q, r.target_faces)) log(note);
     if (a.json || a.stats) {
       const SurfaceDistance d = surface_distance(in.quads, ref, a.samples);
       if (a.json) {
@@ -146,6 +143,7 @@ int run_simplify(const SimplifyArgs& a) {
                                   ", \"border_insets\": " + n(r.border_insets) + ", \"tips\": " + n(r.tips) +
                                   ", \"chord_collapses\": " + n(r.chord_collapses) + ", \"rotations\": " + n(r.rotations) +
                                   ", \"unfolds\": " + n(r.unfolds) + ", \"input_faces\": " + n(r.initial_faces) +
+                                  ", \"target_faces\": " + n(r.target_faces) +
                                   ", \"refused\": {\"topology\": " + n(r.refused_topology) +
                                   ", \"valence\": " + n(r.refused_valence) + ", \"geometry\": " + n(r.refused_geometry) +
                                   ", \"fitmap\": " + n(r.refused_fitmap) + ", \"reach\": " + n(r.refused_reach) +

@@ -19,7 +19,6 @@ int run_convert(const ConvertArgs& args);
 struct SimplifyArgs {
   std::string input, output;
   SimplifyParams params;  // the options bind to its fields, so the defaults are the pipeline's
-  double faces_percent = 0;  // --faces P%: the target is P% of the input's quads (0: a count)
   bool stats = false, json = false, quiet = false;
   unsigned samples = 1000000;
 };

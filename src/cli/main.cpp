@@ -82,8 +82,9 @@ int main(int argc, char** argv) {
        "-f,--faces",
        [&simp](const std::string& v) {
          // Checked by the validator: a whole number, or a share of (0, 100] with '%'.
-         if (v.back() == '%')
-           qs::parse_number(std::string_view(v).substr(0, v.size() - 1), simp.faces_percent);
+         double percent = 0;
+         if (v.back() == '%' && qs::parse_number(std::string_view(v).substr(0, v.size() - 1), percent))
+           simp.params.target_share = percent / 100;
          else
            qs::parse_number(v, simp.params.target_faces);
        },

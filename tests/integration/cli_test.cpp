@@ -286,6 +286,7 @@ TEST_F(Cli, faces_as_a_share_of_the_input) {
     };
     ASSERT_GT(number("input_faces"), 100) << r.out;
     EXPECT_EQ(number("faces"), std::lround(0.625 * double(number("input_faces")))) << mode;
+    EXPECT_EQ(number("target_faces"), number("faces"));
   }
   const CliRun r = run("simplify " + input_ + " " + p("s.ply") + " --faces 10% --adaptive --auto-halt");
   EXPECT_EQ(r.code, 2);

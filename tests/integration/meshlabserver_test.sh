@@ -57,6 +57,19 @@ run_case() {  # input target
   echo "ok: $name -> $faces quads (target $target)"
 }
 run_case "$work/torus.ply" 500
+# A share of the quads instead of a number (TargetPerc), as the CLI's --faces 12.5%.
+sed 's/name="TargetPerc" type="RichFloat" value="[0-9.]*"/name="TargetPerc" type="RichFloat" value="0.125"/' \
+  "$script" >"$work/share.mlx"
+"$cli" simplify "$work/torus.ply" "$work/share_cli.ply" --faces 12.5% -q >/dev/null
+if server -i "$work/torus.ply" -o "$work/share.ply" -m ff -s "$work/share.mlx" &&
+   "$cli" stats "$work/torus.ply" "$work/share.ply" --json --samples 20000 >"$work/share.json" &&
+   "$cli" stats "$work/torus.ply" "$work/share_cli.ply" --json --samples 20000 >"$work/share_cli.json" &&
+   [ "$(json "$work/share.json" faces)" = "$(json "$work/share_cli.json" faces)" ] &&
+   [ "$(json "$work/share.json" faces)" = 576 ]; then  # an eighth of the torus's 4,608 quads
+  echo "ok: TargetPerc 0.125 gives the CLI's --faces 12.5%: 576 quads"
+else
+  fail "TargetPerc did not give an eighth of the quads"; cat "$work/server.log"
+fi
 bunny=$(ml_bunny_ply "$datasets" "$cli" "$work/bunny_fitmap.ply") || fail "could not write the fallback bunny.ply"
 if [ "$bunny" = "$work/bunny_fitmap.ply" ]; then
   # MeshLab saves glmark2's bunny again, so that the CLI reads the float coordinates

@@ -36,6 +36,22 @@ def test_simplification_on_the_bunny(bunny_path, target):
     assert not out.has_vertex_color(), "an input without colours gives quads without"
 
 
+def test_a_share_of_the_quads_as_the_target(bunny_path, cli, tmp_path):
+    """targetperc (MeshLab's quadric decimation's convention, a fraction) gives the CLI's --faces P%."""
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(bunny_path)
+    ms.meshing_tri_to_pure_quad()
+    quads = len(ms.current_mesh().polygonal_face_list())
+    ms.load_new_mesh(bunny_path)
+    ms.meshing_quad_mesh_simplification(targetperc=0.05)
+    assert len(ms.current_mesh().polygonal_face_list()) == round(0.05 * quads)
+    out = tmp_path / "five.ply"
+    subprocess.run([cli, "simplify", bunny_path, str(out), "--faces", "5%", "-q"], check=True, stdout=subprocess.DEVNULL)
+    stats = json.loads(subprocess.run([cli, "stats", bunny_path, str(out), "--json", "--samples", "1000"],
+                                      check=True, capture_output=True, text=True).stdout)
+    assert stats["faces"] == round(0.05 * quads)
+
+
 def border_points(mesh):
     """Vertices on the border of a pymeshlab mesh (edges used by one polygon only)."""
     count = {}

@@ -245,6 +245,7 @@ TEST(PluginParams, the_dialogs_defaults_are_the_clis) {
   list["TargetFaceNum"] = 500;  // the dialog's default depends on the layer
   const SimplifyParams p = simplify_params_of(list), cli;
   EXPECT_EQ(p.target_faces, 500u);
+  EXPECT_EQ(p.target_share, cli.target_share);
   EXPECT_EQ(p.adaptive, cli.adaptive);
   EXPECT_EQ(p.auto_halt, cli.auto_halt);
   EXPECT_FLOAT_EQ(float(p.tau), float(cli.tau));
@@ -267,11 +268,12 @@ TEST(PluginParams, each_parameter_reaches_its_own_field) {
   Parameters list(kSimplify);
   list["Adaptive"] = 1, list["TargetFaceNum"] = 321, list["HaltShare"] = 0.5, list["Tau"] = 0.125;
   list["MaxAspect"] = 2, list["Reach"] = 0.25, list["PreserveBoundary"] = 1, list["KeepTips"] = 1;
-  list["Fast"] = 1, list["FitToInput"] = 1;
+  list["Fast"] = 1, list["FitToInput"] = 1, list["TargetPerc"] = 0.375;
   SimplifyParams p = simplify_params_of(list);
   EXPECT_TRUE(p.adaptive);
   EXPECT_FALSE(p.auto_halt);
   EXPECT_EQ(p.target_faces, 321u);
+  EXPECT_EQ(p.target_share, 0.375);
   EXPECT_EQ(p.halt_share, 0.5);
   EXPECT_EQ(p.tau, 0.125);
   EXPECT_EQ(p.max_aspect, 2);
@@ -282,6 +284,7 @@ TEST(PluginParams, each_parameter_reaches_its_own_field) {
   p = simplify_params_of(list);
   EXPECT_TRUE(p.auto_halt);
   EXPECT_EQ(p.target_faces, 0u);
+  EXPECT_EQ(p.target_share, 0);
 }
 
 TEST(PluginParams, combinations_the_run_cannot_take_are_refused) {
@@ -292,6 +295,10 @@ TEST(PluginParams, combinations_the_run_cannot_take_are_refused) {
   EXPECT_THROW(simplify_params_of(list), std::invalid_argument);
   list["AutoHalt"] = 0, list["MaxAspect"] = 0.5;
   EXPECT_THROW(simplify_params_of(list), std::invalid_argument);
+  list["MaxAspect"] = 3, list["TargetPerc"] = 1.5;  // a share past the whole
+  EXPECT_THROW(simplify_params_of(list), std::invalid_argument);
+  list["TargetPerc"] = 0.5, list["TargetFaceNum"] = -3;  // a share is a target without a number
+  EXPECT_NO_THROW(simplify_params_of(list));
 }
 
 TEST(PluginSpecs, names_are_unique_and_defaults_in_range) {
@@ -426,6 +433,13 @@ TEST(PluginRunner, simplification_logs_what_it_did_and_matches_the_pipeline) {
   const ReferenceSurface ref(std::move(in.reference));
   simplify_input(in, ref, params);
   EXPECT_EQ(quads_of(in.quads), quads_of(q));
+
+  // A share of the quads the layer converts to, in place of the count.
+  params.target_faces = 0, params.target_share = 0.25;
+  Outcome share;
+  const Index shared = run_simplification(layer, "ball", params, {}, share).n_faces();
+  EXPECT_EQ(shared, Index(std::lround(0.25 * double(prepare_input(layer, "ball").quads.n_faces()))));
+  params.target_share = 0;
 
   // A target under what the mesh can reach is said in the log.
   params.target_faces = 1;

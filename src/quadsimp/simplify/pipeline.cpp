@@ -1,6 +1,8 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include "quadsimp/simplify/pipeline.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -13,10 +15,12 @@
 namespace qs {
 
 std::string check_params(const SimplifyParams& p) {
+  if (!(p.target_share >= 0 && p.target_share <= 1)) return "the target share must be in [0, 1]";
+  const bool target = p.target_faces != 0 || p.target_share > 0;
   if (!p.adaptive && p.auto_halt) return "automatic halting needs the adaptive mode";
-  if (!p.adaptive && p.target_faces == 0) return "the uniform mode needs a target number of faces";
-  if (p.adaptive && p.auto_halt && p.target_faces != 0) return "give either a target number of faces or automatic halting, not both";
-  if (p.adaptive && !p.auto_halt && p.target_faces == 0) return "the adaptive mode needs a target number of faces or automatic halting";
+  if (!p.adaptive && !target) return "the uniform mode needs a target number of faces";
+  if (p.adaptive && p.auto_halt && target) return "give either a target number of faces or automatic halting, not both";
+  if (p.adaptive && !p.auto_halt && !target) return "the adaptive mode needs a target number of faces or automatic halting";
   if (!(p.tau > 0 && p.tau < 1)) return "tau must be between 0 and 1";
   if (!(p.m_factor > 0)) return "the M-fitmap factor must be positive";
   if (!(p.m_slack >= 1)) return "the M-fitmap slack must be at least 1";
@@ -24,6 +28,11 @@ std::string check_params(const SimplifyParams& p) {
   if (!(p.max_aspect >= 1)) return "the largest aspect must be at least 1";
   if (!(p.reach >= 0 && p.reach <= 1)) return "the reach must be in [0, 1]";
   return {};
+}
+
+Index target_faces_of(const SimplifyParams& p, Index quads) {
+  if (!(p.target_share > 0)) return p.target_faces;
+  return std::max<Index>(1, Index(std::lround(p.target_share * double(quads))));
 }
 
 SimplifyOptions simplify_options(const SimplifyParams& p, const Fitmaps* fitmaps) {
@@ -56,6 +65,7 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
     fitmaps = compute_fitmaps(ref.mesh(), fo);
   }
   SimplifyOptions opt = simplify_options(p, &fitmaps);
+  opt.target_faces = target_faces_of(p, in.quads.n_faces());
   opt.progress = progress;
   SimplifyReport r = simplify(in.quads, ref, opt);
   if (p.fit_to_input && !r.cancelled) {

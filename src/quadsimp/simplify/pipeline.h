@@ -14,7 +14,10 @@ namespace qs {
 //! What a user chooses, in the CLI or in a MeshLab filter (the same names and defaults:
 //! both take theirs from here, and the options' defaults come from the core's).
 struct SimplifyParams {
-  Index target_faces = 0;        //!< uniform: required; adaptive: optional
+  Index target_faces = 0;        //!< uniform: required (or target_share); adaptive: optional
+  //! Above 0: the target is this share of the quads the input converts to, in place of
+  //! target_faces (one setting for a batch of meshes of different sizes).
+  double target_share = 0;
   bool adaptive = false;
   bool auto_halt = false;        //!< adaptive: stop once the M-fitmap blocks halt_share of the surface
   double tau = FitmapOptions().tau;                //!< M-fitmap tolerance
@@ -32,13 +35,17 @@ struct SimplifyParams {
 //! Checks a parameter combination; returns "" or the reason it is refused.
 std::string check_params(const SimplifyParams& params);
 
+//! The face target `params` set for an input that converts to `quads` quads: target_faces,
+//! or target_share of `quads` (at least 1); 0 for none (automatic halting).
+Index target_faces_of(const SimplifyParams& params, Index quads);
+
 //! The core's options for `params` (no progress callback), with `fitmaps` (computed on
 //! the reference surface with params.tau) in adaptive mode: what simplify_input() runs
 //! with, and what predicted_halting_faces() must be given to predict its halting count.
 SimplifyOptions simplify_options(const SimplifyParams& params, const Fitmaps* fitmaps);
 
-//! The whole job on prepared input: fitmaps on `ref` in adaptive mode, then simplify(),
-//! then fit_to_surface() if asked.
+//! The whole job on prepared input: fitmaps on `ref` in adaptive mode, then simplify()
+//! (to target_faces_of() the input's quads), then fit_to_surface() if asked.
 //! `ref` is the reference surface of `in.reference` (the caller keeps it for measuring
 //! the result). `in.quads` is simplified in place. \throw std::invalid_argument for
 //! parameters check_params() refuses; Cancelled when `progress` says stop.

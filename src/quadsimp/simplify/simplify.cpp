@@ -525,6 +525,7 @@ SimplifyReport Simplifier::run() {
   const CleanCounts initial = clean_all(m_);
   rep_.doublets += initial.doublets;
   rep_.singlets += initial.singlets;
+  rep_.target_faces = opt_.target_faces;
   rep_.initial_faces = m_.n_faces();
   version_.assign(m_.face_capacity(), 0);
   face_mark_.assign(m_.face_capacity(), 0);

@@ -180,6 +180,7 @@ struct SimplifyOptions {
 };
 
 struct SimplifyReport {
+  Index target_faces = 0;  //!< the run's face target (SimplifyOptions::target_faces; 0: none)
   Index initial_faces = 0;
   Index faces = 0;
   Index collapses = 0;
