@@ -74,8 +74,9 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "Uniform (off): equal-sized quads, stop at the target. Adaptive (on): quad sizes follow the fitmaps."},
       {kSimplify, "TargetFaceNum", "Target number of quads", ParamKind::Int, -1, 0, 1e9,
        "Stop when the mesh has at most this many quads. Required in uniform mode (unless the target share is "
-       "set); in adaptive mode it is ignored when automatic halting is on. A mesh of several pieces shares it among them by area: pieces "
-       "that cannot shrink to their share (scan debris) leave the result above it, and the log says so. "
+       "set); in adaptive mode it is ignored when automatic halting is on. A mesh of several pieces shares it "
+       "among them by area: pieces that cannot shrink to their share (scan debris) leave the result above it, "
+       "and the log says so. "
        "Default: a tenth of the input's quads."},
       {kSimplify, "TargetPerc", "Target share of the quads", ParamKind::Float, 0, 0, 1,
        "If above 0, the target is this share of the quads the layer converts to (0.1: a tenth), in place of the "

@@ -46,7 +46,8 @@ def test_a_share_of_the_quads_as_the_target(bunny_path, cli, tmp_path):
     ms.meshing_quad_mesh_simplification(targetperc=0.05)
     assert len(ms.current_mesh().polygonal_face_list()) == round(0.05 * quads)
     out = tmp_path / "five.ply"
-    subprocess.run([cli, "simplify", bunny_path, str(out), "--faces", "5%", "-q"], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([cli, "simplify", bunny_path, str(out), "--faces", "5%", "-q"], check=True,
+                   stdout=subprocess.DEVNULL)
     stats = json.loads(subprocess.run([cli, "stats", bunny_path, str(out), "--json", "--samples", "1000"],
                                       check=True, capture_output=True, text=True).stdout)
     assert stats["faces"] == round(0.05 * quads)

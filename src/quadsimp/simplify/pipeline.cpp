@@ -20,7 +20,8 @@ std::string check_params(const SimplifyParams& p) {
   if (!p.adaptive && p.auto_halt) return "automatic halting needs the adaptive mode";
   if (!p.adaptive && !target) return "the uniform mode needs a target number of faces";
   if (p.adaptive && p.auto_halt && target) return "give either a target number of faces or automatic halting, not both";
-  if (p.adaptive && !p.auto_halt && !target) return "the adaptive mode needs a target number of faces or automatic halting";
+  if (p.adaptive && !p.auto_halt && !target)
+    return "the adaptive mode needs a target number of faces or automatic halting";
   if (!(p.tau > 0 && p.tau < 1)) return "tau must be between 0 and 1";
   if (!(p.m_factor > 0)) return "the M-fitmap factor must be positive";
   if (!(p.m_slack >= 1)) return "the M-fitmap slack must be at least 1";
