@@ -585,7 +585,7 @@ TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
                 "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid a\n"},
       {"b.ply", binary_ply},
       {"b.stl", stl},
-      // Old Stanford elements, read by vcglib: triangle strips and a range grid.
+      // Old Stanford elements: triangle strips and a range grid.
       {"t.ply", "ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\n"
                 "element tristrips 1\nproperty list int int vertex_indices\nend_header\n" + corners +
                 "8 0 1 3 2 -1 1 5 6\n"},
@@ -593,39 +593,51 @@ TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
                 "property float x\nproperty float y\nproperty float z\nelement range_grid 8\n"
                 "property list uchar int vertex_indices\nend_header\n" + corners +
                 "1 0\n1 1\n1 5\n0\n1 3\n1 2\n2 6 4\n1 4\n"},
+      // Colours: vertex and face colours in PLY and OFF, materials (m.mtl, damaged too) in OBJ.
+      {"c.ply", ply_header(7, 3, "property uchar red\nproperty float green\nproperty uchar blue\n") + corners +
+                    "4 0 1 2 3 255 0.5 0\n3 1 5 6 0 1 255\n3 1 6 2 9 0 9\n"},
+      {"c.off", "COFF\n7 3 0\n0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 1 2 3\n0.5 2 0 4 5 6\n"
+                "2 0 0 0.5 0.5 0.5\n2 1 0 1 1 1\n4 0 1 2 3 255 0 0\n3 1 5 6 0.1 0.2 0.3 1\n3 1 6 2 1 2 3 4\n"},
+      {"c.obj", "mtllib m.mtl\n" + obj + "vt 0 0\nusemtl red\nf 1/1 2/1 3/1 4/1\nusemtl blue one\nf 2 6 7\nf 2 7 3\n"},
   };
+  const std::string mtl = "newmtl red\nKd 1 0 0\nd 0.5\nnewmtl blue one\nKd 0 0 1\nnewmtl t\nmap_Kd t.png\n";
   const std::vector<std::string> nasty = {"-1", "0", "7", "100000000", "-100000000", "2147483647", "-2147483648",
                                           "4294967296", "nan", "inf", "1e308", "x", "", "#", "/", "3", "5", "255",
                                           "\n", "0x10", "1.5", "element", "property"};
   std::mt19937 rng(2026);
   auto pick = [&rng](std::size_t n) { return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };
   int loaded = 0, refused = 0;
-  for (int round = 0; round < 250; ++round) {
-    for (const auto& [name, seed] : seeds) {
-      std::string text = seed;
-      const bool binary = name[0] == 'b';
-      for (std::size_t k = 0, edits = 1 + pick(4); k < edits && !text.empty(); ++k) {
-        const std::size_t op = pick(6);
-        if (binary || op == 5) {  // a byte changed, dropped or added
-          const std::size_t at = pick(text.size());
-          if (op % 3 == 0) text[at] = char(pick(256));
-          else if (op % 3 == 1) text.erase(at, 1);
-          else text.insert(at, 1, char(pick(256)));
-          continue;
-        }
-        // A field (between spaces or line ends) replaced, dropped or added, or a line dropped.
-        std::size_t at = pick(text.size()), b = text.find_last_of(" \n", at), e = text.find_first_of(" \n", at);
-        b = b == std::string::npos ? 0 : b + 1;
-        e = e == std::string::npos ? text.size() : e;
-        if (op == 0 || op == 1) text.replace(b, e - b, nasty[pick(nasty.size())]);
-        else if (op == 2) text.erase(b, e - b);
-        else if (op == 3) text.insert(b, nasty[pick(nasty.size())] + " ");
-        else if (const std::size_t l = text.rfind('\n', at), r = text.find('\n', at); l != r)
-          text.erase(l == std::string::npos ? 0 : l, r == std::string::npos ? std::string::npos : r - l);
+  // A few random edits: bytes in a binary file, fields and lines in a text one.
+  const auto damaged = [&](std::string text, bool binary) {
+    for (std::size_t k = 0, edits = 1 + pick(4); k < edits && !text.empty(); ++k) {
+      const std::size_t op = pick(6);
+      if (binary || op == 5) {  // a byte changed, dropped or added
+        const std::size_t at = pick(text.size());
+        if (op % 3 == 0) text[at] = char(pick(256));
+        else if (op % 3 == 1) text.erase(at, 1);
+        else text.insert(at, 1, char(pick(256)));
+        continue;
       }
+      // A field (between spaces or line ends) replaced, dropped or added, or a line dropped.
+      std::size_t at = pick(text.size()), b = text.find_last_of(" \n", at), e = text.find_first_of(" \n", at);
+      b = b == std::string::npos ? 0 : b + 1;
+      e = e == std::string::npos ? text.size() : e;
+      if (op == 0 || op == 1) text.replace(b, e - b, nasty[pick(nasty.size())]);
+      else if (op == 2) text.erase(b, e - b);
+      else if (op == 3) text.insert(b, nasty[pick(nasty.size())] + " ");
+      else if (const std::size_t l = text.rfind('\n', at), r = text.find('\n', at); l != r)
+        text.erase(l == std::string::npos ? 0 : l, r == std::string::npos ? std::string::npos : r - l);
+    }
+    return text;
+  };
+  for (int round = 0; round < 250; ++round) {
+    write("m.mtl", damaged(mtl, false));
+    for (const auto& [name, seed] : seeds) {
+      const std::string text = damaged(seed, name[0] == 'b');
       const std::string file = write(std::to_string(round) + name, text);
       try {
-        load_input(file);
+        const Input in = load_input(file);
+        colours_of_quads(in.colour_source, in.quads);
         ++loaded;
       } catch (const InvalidInput& e) {
         ++refused;
