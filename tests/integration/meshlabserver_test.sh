@@ -3,9 +3,10 @@
 #  - the filter dump lists all four filters and their parameters;
 #  - the example .mlx script simplifies a generated torus and the shared bunny, and the
 #    PLY saved with face flags (-m ff) reads back as a valid pure quad mesh with the
-#    target face count (within 1%);
+#    target face count (within 1%), or with a share of the quads (TargetPerc) the CLI's;
 #  - the plugin and the CLI give the same result for the same input and parameters, in
-#    uniform mode and in adaptive mode with automatic halting (at two halting shares);
+#    uniform mode and in adaptive mode with automatic halting (at two halting shares),
+#    and MeshLab reads the CLI's PLY as its quads;
 #  - a point cloud makes the filter fail with our message, without crashing MeshLab;
 #  - a fin on an edge (three triangles on it) is removed, and MeshLab's log says so;
 #  - a strip of triangles folded back onto a grid is laid flat, and the log says so;
