@@ -250,6 +250,8 @@ TEST_F(Cli, bad_arguments_exit_2) {
            {"simplify " + input_ + " " + p("o.ply") + " --faces 0", "--faces: '0' is not a whole number from 1"},
            {"simplify " + input_ + " " + p("o.ply") + " --faces 2.5", "--faces: '2.5' is not a whole number from 1"},
            {"simplify " + input_ + " " + p("o.ply") + " --faces 0%", "--faces: '0%' is not a share above 0%"},
+           {"simplify " + input_ + " " + p("o.ply") + " --adaptive",
+            "the adaptive mode needs a target number of faces or automatic halting"},
            {"simplify " + input_ + " " + p("o.ply") + " --faces 100.5%", "'100.5%' is not a share above 0% and at most 100%"},
            {"simplify " + input_ + " " + p("o.ply") + " --faces ten%", "--faces: 'ten%' is not a share"},
            {"simplify " + input_ + " " + p("o.ply") + " --faces 10 --m-factor 0", "--m-factor: '0' is not a number above 0"},

@@ -801,6 +801,22 @@ TEST_F(MeshIo, ply_variants_are_read) {
           << e.what();
     }
   }
+  // An element given twice (a second list of vertices, faces or grid entries) is refused.
+  const std::string one_grid = range_grid("1 0\n1 1\n1 2\n1 3\n1 4\n1 5\n");
+  const std::string second_grid = std::string(one_grid).insert(
+      one_grid.find("end_header"), "element range_grid 0\nproperty list uchar int vertex_indices\n");
+  const std::string triangle = ply_header(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const std::string second_vertices = std::string(triangle).insert(triangle.find("end_header"),
+                                                                   "element vertex 0\nproperty float x\n");
+  for (const auto& [twice, what] : {std::pair{second_grid, "two 'range_grid' elements"},
+                                    std::pair{second_vertices, "two 'vertex' elements"}}) {
+    try {
+      read_mesh(write("twice.ply", twice));
+      ADD_FAILURE() << "read:\n" << twice;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  }
   const std::string commented = ply_header(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   EXPECT_EQ(read_mesh(write("commented.ply", std::string(commented).insert(4, "comment num_cols wide\n")))
                 .triangles.size(),
