@@ -41,7 +41,8 @@ Index target_faces_of(const SimplifyParams& params, Index quads);
 
 //! The core's options for `params` (no progress callback), with `fitmaps` (computed on
 //! the reference surface with params.tau) in adaptive mode: what simplify_input() runs
-//! with, and what predicted_halting_faces() must be given to predict its halting count.
+//! with (once it has turned a target share into a count, target_faces_of()), and what
+//! predicted_halting_faces() must be given to predict its halting count.
 SimplifyOptions simplify_options(const SimplifyParams& params, const Fitmaps* fitmaps);
 
 //! The whole job on prepared input: fitmaps on `ref` in adaptive mode, then simplify()
