@@ -35,4 +35,6 @@ for mode in uniform adaptive; do
   [[ $out == "200 quads,"* ]] || { echo "FAIL: the consumer's $mode run did not give 200 quads"; exit 1; }
   [ "$(grep -c '^f ' "$stage/quads.obj")" = 200 ] || { echo "FAIL: its file does not hold 200 quads"; exit 1; }
 done
-echo "ok: a CMake project finds quadsimp::io in the installed package, builds and simplifies"
+out=$("$stage/consumer/build/simplify_grid" 150)
+[ "$out" = "150 quads" ] || { echo "FAIL: the core alone gave '$out', not 150 quads"; exit 1; }
+echo "ok: a CMake project finds quadsimp::io and quadsimp::core in the installed package, builds and simplifies"
