@@ -246,16 +246,16 @@ TEST_F(MeshIo, face_colours_round_trip_every_output_format) {
   }
 }
 
-// OBJ's face colours are its materials' diffuse colours (Kd, and d as alpha), from the
-// material files it names, kept only if every face has one.
+// OBJ's face colours are its materials' diffuse colours (Kd; d as alpha, or Tr as 1 -
+// alpha), from the material files it names, kept only if every face has one.
 TEST_F(MeshIo, obj_face_colours_come_from_its_materials) {
   write("a.mtl", "newmtl red one\nKd 1 0 0\nd 0.5\nnewmtl textured\nKd 1 1 1\nmap_Kd t.png\n");
-  write("b.mtl", "# another file\nnewmtl blue\nKa 0 0 0\nKd 0 0 1\n");
+  write("b.mtl", "# another file\nnewmtl blue\nKa 0 0 0\nKd 0 0 1\nTr 0.25\n");  // as MeshLab writes alpha
   const std::string v = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n";
   const MeshFile f = read_mesh(write("m.obj", "mtllib a.mtl b.mtl\n" + v +
                                                   "usemtl red one\nf 1 2 3 4\nusemtl blue\nf 2 5 3\n"));
   EXPECT_EQ(f.quad_colours, (std::vector<Colour>{{255, 0, 0, 128}}));
-  EXPECT_EQ(f.triangle_colours, (std::vector<Colour>{{0, 0, 255, 255}}));
+  EXPECT_EQ(f.triangle_colours, (std::vector<Colour>{{0, 0, 255, 191}}));
   // A face without a material, with a textured one, with one no file names, or a material
   // file missing: no face colours.
   for (const char* faces : {"f 1 2 3 4\nusemtl blue\nf 2 5 3\n", "usemtl textured\nf 1 2 3 4\n",

@@ -23,8 +23,8 @@ std::string name_on(const detail::TextLines& line) {
   return name;
 }
 
-// The diffuse colours (Kd, and d as alpha) of an .mtl file's materials, into `colours` by
-// name, as MeshLab reads face colours from OBJ. A material with a diffuse texture
+// The diffuse colours (Kd, with d as alpha, or Tr as 1 - alpha: MeshLab writes Tr) of an
+// .mtl file's materials, into `colours` by name, as MeshLab reads face colours from OBJ. A material with a diffuse texture
 // (map_Kd) gets none: its faces' colours are the texture's. A file that cannot be read
 // adds nothing (its faces then have no colour, and the mesh none).
 void read_materials(const std::string& path, std::unordered_map<std::string, Colour>& colours) {
@@ -47,9 +47,9 @@ void read_materials(const std::string& path, std::unordered_map<std::string, Col
       const std::uint8_t alpha = colour ? (*colour)[3] : 255;
       colour = in.colour(1, true, c) ? std::optional<Colour>(c) : std::nullopt;
       if (colour) (*colour)[3] = alpha;
-    } else if (kw == "d" && in.size() == 2 && colour) {
-      double d;
-      if (parse_number(in[1], d)) (*colour)[3] = colour_byte(255 * d);
+    } else if ((kw == "d" || kw == "Tr") && in.size() == 2 && colour) {
+      double x;
+      if (parse_number(in[1], x)) (*colour)[3] = colour_byte(255 * (kw == "d" ? x : 1 - x));
     } else if (kw == "map_Kd") {
       textured = true;
     }
