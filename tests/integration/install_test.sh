@@ -20,6 +20,9 @@ for f in lib/libquadsimp_core.a lib/libquadsimp_io.a lib/cmake/quadsimp/quadsimp
          include/quadsimp/simplify/pipeline.h include/quadsimp/io/mesh_io.h; do
   [ -f "$prefix/$f" ] || { echo "FAIL: $f not installed"; exit 1; }
 done
+for f in text_lines.h text_readers.h atomic_file.h; do  # the readers' and writers' own helpers
+  [ ! -e "$prefix/include/quadsimp/io/$f" ] || { echo "FAIL: the internal $f was installed"; exit 1; }
+done
 # The consumer is built from a copy, away from the source tree and its build, so that
 # only the installed package can be found.
 cp -r "$here/consumer" "$stage/consumer"
