@@ -100,13 +100,8 @@ void Simplifier::coarsen_border() {
   }
   border_candidates_.resize(kept);
   std::sort(border_verts_.begin(), border_verts_.end());
-  // One pass can remove many quads (a border of a few input edges each, at the start):
-  // asked for 900 of a decimated bunny's 999 quads, the run stopped at 882.
-  const Index target = opt_.target_faces;
-  for (Index b : border_verts_) {
-    if (target > 0 && m_.n_faces() <= target) break;
+  for (Index b : border_verts_)
     if (m_.is_vertex_live(b) && m_.is_border_vertex(b) && piece_room(b) > 0) remove_border_vertex(b);
-  }
 }
 
 // Which of border vertices a and c keeps its place when they merge: a border corner
