@@ -30,7 +30,7 @@ void write_atomically(const std::string& path, WriteFn&& write) {
   fs::rename(tmp, target, ec);
   if (ec) {
     fs::remove(tmp, ec);
-    throw InvalidInput(path + ": cannot be written (" + ec.message() + ")");
+    fail_file(path, "cannot be written (" + ec.message() + ")");
   }
 }
 

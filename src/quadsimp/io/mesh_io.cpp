@@ -47,56 +47,30 @@ class TMesh : public vcg::tri::TriMesh<std::vector<TVertex>, std::vector<TFace>>
   ~TMesh() override { ClearAttributes(); }
 };
 
-[[noreturn]] void fail(const std::string& path, const std::string& why) {
-  throw InvalidInput(path + ": " + why);
-}
-
 void check_readable(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) fail_file(path, "no such file");
   std::ifstream probe(path, std::ios::binary);
-  if (!probe) fail(path, "cannot be opened for reading");
-  if (probe.peek() == std::ifstream::traits_type::eof()) fail(path, "the file is empty");
+  if (!probe) fail_file(path, "cannot be opened for reading");
+  if (probe.peek() == std::ifstream::traits_type::eof()) fail_file(path, "the file is empty");
 }
 
-void load_vcg(const std::string& path, TMesh& m) {
-  const std::string ext = extension_of(path);
-  if (ext == "stl") {
-    int mask = 0;
-    const int err = vcg::tri::io::ImporterSTL<TMesh>::Open(m, path.c_str(), mask);
-    if (err != 0) fail(path, std::string("unreadable STL (") + vcg::tri::io::ImporterSTL<TMesh>::ErrorMsg(err) + ")");
-  } else {
-    fail(path, "unknown format '" + ext + "' (expected .ply, .obj, .off or .stl)");
-  }
-}
-
-// Triangles with their faux-edge bits, then quads rebuilt from the faux pairs.
-MeshFile regroup(const std::string& path, const TMesh& m) {
-  std::vector<Vec3> positions;
-  positions.reserve(m.vert.size());
-  std::vector<int> vid(m.vert.size(), -1);
-  for (std::size_t i = 0; i < m.vert.size(); ++i) {
-    if (m.vert[i].IsD()) continue;
-    vid[i] = int(positions.size());
-    const auto& p = m.vert[i].cP();
-    positions.emplace_back(p[0], p[1], p[2]);
-  }
-  std::vector<std::array<Index, 3>> tris;
-  std::vector<std::uint8_t> faux;
+// STL through vcglib's importer, which makes each facet three vertices of its own: a
+// triangle soup, with no deleted elements or faux edges (cleaning welds it).
+MeshFile read_stl(const std::string& path) {
+  TMesh m;
+  int mask = 0;
+  const int err = vcg::tri::io::ImporterSTL<TMesh>::Open(m, path.c_str(), mask);
+  if (err != 0) fail_file(path, std::string("unreadable STL (") + vcg::tri::io::ImporterSTL<TMesh>::ErrorMsg(err) + ")");
+  MeshFile out;
+  out.positions.reserve(m.vert.size());
+  for (const auto& v : m.vert) out.positions.emplace_back(v.cP()[0], v.cP()[1], v.cP()[2]);
+  out.triangles.reserve(m.face.size());
   for (const auto& f : m.face) {
-    if (f.IsD()) continue;
-    std::array<Index, 3> t;
-    for (int k = 0; k < 3; ++k) {
-      // Unpatched, vcglib's PLY reader passes a polygon's corner that names no vertex
-      // (scripts/patches): refused here rather than followed, whatever vcglib did.
-      const std::size_t v = vcg::tri::Index(m, f.cV(k));
-      if (v >= m.vert.size() || vid[v] < 0) fail(path, "a face refers to a vertex that does not exist");
-      t[k] = Index(vid[v]);
-    }
-    tris.push_back(t);
-    faux.push_back(std::uint8_t(unsigned(f.IsF(0)) | unsigned(f.IsF(1)) << 1 | unsigned(f.IsF(2)) << 2));
+    const auto id = [&](int k) { return Index(vcg::tri::Index(m, f.cV(k))); };
+    out.triangles.push_back({id(0), id(1), id(2)});
   }
-  return pair_faux_triangles(std::move(positions), std::move(tris), faux);
+  return out;
 }
 
 // t as vcglib's triangle mesh (same ids), for its writer and its closest-point search.
@@ -131,12 +105,12 @@ MeshFile read_mesh(const std::string& path) {
     file = read_obj(path);
   } else if (ext == "ply") {
     file = read_ply(path);
+  } else if (ext == "stl") {
+    file = read_stl(path);
   } else {
-    TMesh m;
-    load_vcg(path, m);
-    file = regroup(path, m);
+    fail_file(path, "unknown format '" + ext + "' (expected .ply, .obj, .off or .stl)");
   }
-  if (file.positions.empty()) fail(path, "the file holds no vertices (empty mesh)");
+  if (file.positions.empty()) fail_file(path, "the file holds no vertices (empty mesh)");
   return file;
 }
 
@@ -167,7 +141,7 @@ QuadColours colours_of_quads(const MeshFile& from, const QuadMesh& quads) {
 
 void write_tri_mesh_ply(const std::string& path, const TriMesh& mesh,
                         const std::vector<VertexField>& fields) {
-  if (extension_of(path) != "ply") fail(path, "fields are written as .ply only");
+  if (extension_of(path) != "ply") fail_file(path, "fields are written as .ply only");
   for (const auto& f : fields)
     if (f.values.size() != mesh.positions.size())
       throw std::invalid_argument("write_tri_mesh_ply: field '" + f.name + "' has the wrong size");
@@ -193,7 +167,7 @@ void write_tri_mesh_ply(const std::string& path, const TriMesh& mesh,
   }
   detail::write_atomically(path, [&](const std::string& tmp) {
     const int err = vcg::tri::io::ExporterPLY<TMesh>::Save(tm, tmp.c_str(), true, info);
-    if (err != 0) fail(path, "cannot be written (vcglib error " + std::to_string(err) + ")");
+    if (err != 0) fail_file(path, "cannot be written (vcglib error " + std::to_string(err) + ")");
   });
 }
 

@@ -19,13 +19,10 @@
 
 #include "quadsimp/io/atomic_file.h"
 #include "quadsimp/io/mesh_io.h"
+#include "quadsimp/util/errors.h"
 
 namespace qs {
 namespace {
-
-[[noreturn]] void fail(const std::string& path, const std::string& why) {
-  throw InvalidInput(path + ": " + why);
-}
 
 // The live vertices' numbers in the file, from `first` (tombstones skipped, ids in order).
 std::vector<Index> file_ids(const QuadMesh& q, Index first) {
@@ -90,7 +87,7 @@ void write_ply(const std::string& path, const QuadMesh& q, const QuadColours& co
     spill(kChunk);
   }
   spill(0);
-  if (!out.flush()) fail(path, "cannot be written");
+  if (!out.flush()) fail_file(path, "cannot be written");
 }
 
 // OFF: COFF's vertex colours after the coordinates, a face's after its corners (bytes,
@@ -115,7 +112,7 @@ void write_off(const std::string& path, const QuadMesh& q, const QuadColours& co
     if (!colours.faces.empty()) put_colour(colours.faces[f]);
     out << '\n';
   }
-  if (!out.flush()) fail(path, "cannot be written");
+  if (!out.flush()) fail_file(path, "cannot be written");
 }
 
 // OBJ, with vertex colours after the coordinates as fractions (the extension MeshLab reads
@@ -144,7 +141,7 @@ void write_obj(const std::string& path, const QuadMesh& q, const QuadColours& co
     for (Index k = 0; k < 4; ++k) out << ' ' << id[q.vertex(f, k)];
     out << '\n';
   }
-  if (!out.flush()) fail(path, "cannot be written");
+  if (!out.flush()) fail_file(path, "cannot be written");
 }
 
 // The materials of write_obj(): one per face colour, numbered in the order they come.
@@ -165,7 +162,7 @@ void write_mtl(const std::string& path, const std::map<Colour, int>& materials) 
     out << "newmtl material_" << k << "\nKd " << fraction(c[0]) << ' ' << fraction(c[1]) << ' ' << fraction(c[2])
         << "\nd " << fraction(c[3]) << '\n';
   }
-  if (!out.flush()) fail(path, "cannot be written");
+  if (!out.flush()) fail_file(path, "cannot be written");
 }
 
 }  // namespace
@@ -173,7 +170,7 @@ void write_mtl(const std::string& path, const std::map<Colour, int>& materials) 
 void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadColours& colours) {
   const std::string ext = extension_of(path);
   if (ext != "ply" && ext != "obj" && ext != "off")
-    fail(path, "cannot write '" + ext + "' (quads are written as .ply, .obj or .off)");
+    fail_file(path, "cannot write '" + ext + "' (quads are written as .ply, .obj or .off)");
   if (!colours.vertices.empty() && colours.vertices.size() != mesh.vertex_capacity())
     throw std::invalid_argument("write_quad_mesh: one colour per vertex id expected");
   if (!colours.faces.empty() && colours.faces.size() != mesh.face_capacity())

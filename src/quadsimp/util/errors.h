@@ -13,6 +13,11 @@ class InvalidInput : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+//! Throws InvalidInput("PATH: why"), the form of every message about a mesh file.
+[[noreturn]] inline void fail_file(const std::string& path, const std::string& why) {
+  throw InvalidInput(path + ": " + why);
+}
+
 //! A broken internal invariant, found by validate(). Always a bug in quadsimp.
 class TopologyError : public std::logic_error {
  public:
