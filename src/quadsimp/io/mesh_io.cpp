@@ -3,10 +3,10 @@
 // The only file that sees vcglib's I/O: it reads STL, writes the fitmaps' PLY, and
 // searches the input for the quads' colours. PLY (the old Stanford files' triangle strips
 // and range grids too), OBJ and OFF are read by read_ply.cpp, read_obj.cpp and
-// read_off.cpp, and quads written by write_quads.cpp (why is said there). Every reader gives
-// triangles with "faux" flags on the inner edges of polygons, the way vcglib and MeshLab
-// store quads (MeshLab writes the flags to PLY with -m ff), and the triangles joined by
-// a faux edge are regrouped into quads.
+// read_off.cpp, and quads written by write_quads.cpp (why is said there). Those readers
+// give triangles with "faux" flags on the inner edges of polygons, the way vcglib and
+// MeshLab store quads (MeshLab writes the flags to PLY with -m ff), and the triangles
+// joined by a faux edge are regrouped into quads.
 #include "quadsimp/io/mesh_io.h"
 
 #include <algorithm>

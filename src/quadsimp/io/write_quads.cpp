@@ -135,8 +135,8 @@ void write_obj(const std::string& path, const QuadMesh& q, const QuadColours& co
   int material = -1;
   for (Index f = 0; f < q.face_capacity(); ++f) {
     if (!q.is_face_live(f)) continue;
-    if (!materials.empty() && materials.at(colours.faces[f]) != material)
-      out << "usemtl material_" << (material = materials.at(colours.faces[f])) << '\n';
+    if (const int m = materials.empty() ? -1 : materials.at(colours.faces[f]); m != material)
+      out << "usemtl material_" << (material = m) << '\n';
     out << 'f';
     for (Index k = 0; k < 4; ++k) out << ' ' << id[q.vertex(f, k)];
     out << '\n';
