@@ -51,11 +51,8 @@ template <class CMesh>
 void assign_quads(CMesh& m, const QuadMesh& q) {
   using Alloc = typename vcg::tri::Allocator<CMesh>;
   m.Clear();
-  std::vector<Index> id(q.vertex_capacity(), kNone);
-  Index n = 0;
-  for (Index v = 0; v < q.vertex_capacity(); ++v)
-    if (q.is_vertex_live(v)) id[v] = n++;
-  auto vi = Alloc::AddVertices(m, n);
+  const std::vector<Index> id = q.live_vertex_ids();
+  auto vi = Alloc::AddVertices(m, q.n_vertices());
   for (Index v = 0; v < q.vertex_capacity(); ++v)
     if (q.is_vertex_live(v)) {
       const Vec3& p = q.position(v);

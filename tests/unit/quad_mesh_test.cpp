@@ -231,8 +231,11 @@ TEST(QuadMesh, kill_and_compact) {
   m.repair_out(6);
   EXPECT_TRUE(m.is_border_halfedge(m.out(6)));
   validate(m);
+  const std::vector<Index> live = m.live_vertex_ids();  // what compact() will give
+  EXPECT_EQ(live, (std::vector<Index>{0, 1, 2, kNone, 3, 4, 5, kNone}));
   std::vector<Index> vmap, fmap;
   m.compact(&vmap, &fmap);
+  EXPECT_EQ(vmap, live);
   validate(m);
   EXPECT_EQ(m.n_faces(), 2u);
   EXPECT_EQ(m.n_vertices(), 6u);

@@ -24,15 +24,6 @@
 namespace qs {
 namespace {
 
-// The live vertices' numbers in the file, from `first` (tombstones skipped, ids in order).
-std::vector<Index> file_ids(const QuadMesh& q, Index first) {
-  std::vector<Index> id(q.vertex_capacity(), kNone);
-  Index n = first;
-  for (Index v = 0; v < q.vertex_capacity(); ++v)
-    if (q.is_vertex_live(v)) id[v] = n++;
-  return id;
-}
-
 // A coordinate in the shortest form that reads back to the same double.
 void put_number(std::ostream& out, double x) {
   char buf[32];
@@ -78,7 +69,7 @@ void write_ply(const std::string& path, const QuadMesh& q, const QuadColours& co
     if (!colours.vertices.empty()) data.append(reinterpret_cast<const char*>(colours.vertices[v].data()), 4);
     spill(kChunk);
   }
-  const std::vector<Index> id = file_ids(q, 0);
+  const std::vector<Index> id = q.live_vertex_ids();
   for (Index f = 0; f < q.face_capacity(); ++f) {
     if (!q.is_face_live(f)) continue;
     data += char(4);
@@ -104,7 +95,7 @@ void write_off(const std::string& path, const QuadMesh& q, const QuadColours& co
     if (!colours.vertices.empty()) put_colour(colours.vertices[v]);
     out << '\n';
   }
-  const std::vector<Index> id = file_ids(q, 0);
+  const std::vector<Index> id = q.live_vertex_ids();
   for (Index f = 0; f < q.face_capacity(); ++f) {
     if (!q.is_face_live(f)) continue;
     out << '4';
@@ -131,14 +122,14 @@ void write_obj(const std::string& path, const QuadMesh& q, const QuadColours& co
       for (std::size_t k = 0; k < 3; ++k) out << ' ' << fraction(colours.vertices[v][k]);
     out << '\n';
   }
-  const std::vector<Index> id = file_ids(q, 1);  // OBJ counts from 1
+  const std::vector<Index> id = q.live_vertex_ids();
   int material = -1;
   for (Index f = 0; f < q.face_capacity(); ++f) {
     if (!q.is_face_live(f)) continue;
     if (const int m = materials.empty() ? -1 : materials.at(colours.faces[f]); m != material)
       out << "usemtl material_" << (material = m) << '\n';
     out << 'f';
-    for (Index k = 0; k < 4; ++k) out << ' ' << id[q.vertex(f, k)];
+    for (Index k = 0; k < 4; ++k) out << ' ' << id[q.vertex(f, k)] + 1;  // OBJ counts from 1
     out << '\n';
   }
   if (!out.flush()) fail_file(path, "cannot be written");

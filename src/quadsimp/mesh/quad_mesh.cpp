@@ -172,11 +172,18 @@ void QuadMesh::repair_out(Index v) {
   out_[v] = h;
 }
 
-void QuadMesh::compact(std::vector<Index>* vertex_map, std::vector<Index>* face_map) {
-  std::vector<Index> vmap(pos_.size(), kNone), fmap(face_capacity(), kNone);
-  Index nv = 0, nf = 0;
+std::vector<Index> QuadMesh::live_vertex_ids() const {
+  std::vector<Index> id(pos_.size(), kNone);
+  Index n = 0;
   for (Index v = 0; v < pos_.size(); ++v)
-    if (out_[v] != kNone) vmap[v] = nv++;
+    if (out_[v] != kNone) id[v] = n++;
+  return id;
+}
+
+void QuadMesh::compact(std::vector<Index>* vertex_map, std::vector<Index>* face_map) {
+  std::vector<Index> vmap = live_vertex_ids(), fmap(face_capacity(), kNone);
+  const Index nv = Index(std::count_if(vmap.begin(), vmap.end(), [](Index x) { return x != kNone; }));
+  Index nf = 0;
   for (Index f = 0; f < face_capacity(); ++f)
     if (is_face_live(f)) fmap[f] = nf++;
 

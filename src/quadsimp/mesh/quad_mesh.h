@@ -123,6 +123,10 @@ class QuadMesh {
   //! Marks v dead if no live face uses it.
   void repair_out(Index v);
 
+  //! Each live vertex's number among the live ones, in order of id (kNone for a
+  //! tombstone): the ids compact() gives, and the order files and MeshLab layers list them.
+  std::vector<Index> live_vertex_ids() const;
+
   //! Removes tombstones. Optional maps give old id -> new id (kNone if removed).
   void compact(std::vector<Index>* vertex_map = nullptr, std::vector<Index>* face_map = nullptr);
 

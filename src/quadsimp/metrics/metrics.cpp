@@ -69,12 +69,9 @@ OneSided distances(const std::vector<Vec3>& points, const ReferenceSurface& targ
 
 TriMesh triangulate(const QuadMesh& m) {
   TriMesh t;
-  std::vector<Index> id(m.vertex_capacity(), kNone);
+  const std::vector<Index> id = m.live_vertex_ids();
   for (Index v = 0; v < m.vertex_capacity(); ++v)
-    if (m.is_vertex_live(v)) {
-      id[v] = t.n_vertices();
-      t.positions.push_back(m.position(v));
-    }
+    if (m.is_vertex_live(v)) t.positions.push_back(m.position(v));
   for (Index f = 0; f < m.face_capacity(); ++f) {
     if (!m.is_face_live(f)) continue;
     auto q = m.face_vertices(f);
