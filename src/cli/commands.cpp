@@ -13,6 +13,7 @@
 #include "quadsimp/fitmap/anisotropy.h"
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/fitmap/tips.h"
+#include "quadsimp/io/images.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
 #include "quadsimp/mesh/clean.h"
@@ -62,6 +63,24 @@ void print_quality(const QuadQuality& q, const SurfaceDistance* d) {
                 100 * d->projectability);
 }
 
+// The input's texture baked onto the quads, where the output keeps one (OBJ). An image
+// that cannot be read leaves the texture out, and says so.
+QuadTexture texture_for(const std::string& output, const Input& in, const LogFn& log) {
+  if (in.source.texture.empty()) return {};
+  if (extension_of(output) != "obj") {
+    if (log)
+      log(output + ": the input's texture is written with .obj output only (MeshLab reads no texture on a PLY's "
+                   "or OFF's quads)");
+    return {};
+  }
+  try {
+    return texture_of_quads(in.source, in.quads);
+  } catch (const InvalidInput& e) {
+    if (log) log(std::string(e.what()) + ": the quads are written without a texture");
+    return {};
+  }
+}
+
 void print_summary(const SimplifyArgs& a, const QuadQuality& q, double seconds, const SimplifyReport& r) {
   std::printf("%s -> %s: %u faces, regular %.1f%%, max valence %d, %.2f s (%s)\n", a.input.c_str(), a.output.c_str(),
               q.faces, q.regular_percent, q.max_valence, seconds, operations_done(r).c_str());
@@ -89,8 +108,9 @@ int run_convert(const ConvertArgs& a) {
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
-    Input in = load_input(a.input, {}, stderr_log(a.quiet));
-    write_quad_mesh(a.output, in.quads, colours_of_quads(in.colour_source, in.quads));
+    const LogFn log = stderr_log(a.quiet);
+    Input in = load_input(a.input, {}, log);
+    write_quad_mesh(a.output, in.quads, colours_of_quads(in.source, in.quads), texture_for(a.output, in, log));
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (in.was_pure_quad) {
       std::printf("%s: already pure quad, %u quads written to %s (%.2f s)\n", a.input.c_str(),
@@ -125,7 +145,7 @@ int run_simplify(const SimplifyArgs& a) {
     Input in = load_input(a.input, {}, log);
     const ReferenceSurface ref(std::move(in.reference));
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
-    write_quad_mesh(a.output, in.quads, colours_of_quads(in.colour_source, in.quads));
+    write_quad_mesh(a.output, in.quads, colours_of_quads(in.source, in.quads), texture_for(a.output, in, log));
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads, &ref);
     if (log)

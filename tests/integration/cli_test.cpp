@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fixtures/shapes.h"
+#include "quadsimp/io/images.h"
 #include "quadsimp/io/mesh_io.h"
 
 using namespace qs;
@@ -226,14 +227,93 @@ TEST_F(Cli, face_colours_reach_the_quads) {
   EXPECT_TRUE(fs::exists(p("a.obj.mtl")));
 }
 
-// Texture coordinates are not carried: the log says so, and names MeshLab's transfer.
+// A texture reaches OBJ quads as one of their own: a tile per quad, each texel the input's
+// texture under it. On a sphere mapped by longitude and height (a seam where the longitude
+// wraps), with an image whose red is the longitude and green the height, the texel at
+// each quad's middle has the colour of the point of the sphere under it. Other formats
+// take no texture, and say so.
+TEST_F(Cli, a_texture_reaches_obj_quads) {
+  const TriMesh sphere = fixtures::tri_sphere(24, 32);
+  const auto lon_lat = [](const Vec3& p) {
+    const Vec3 d = p.normalized();
+    return TexCoord{float(std::atan2(d.y(), d.x()) / (2 * M_PI) + 0.5), float((d.z() + 1) / 2)};
+  };
+  std::string obj = "mtllib t.mtl\n";
+  for (const Vec3& v : sphere.positions)
+    obj += "v " + std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) + "\n";
+  obj += "usemtl lonlat\n";
+  int vt = 0;
+  for (const auto& f : sphere.faces) {
+    // Corners across the seam take the longitude of the triangle's side of it.
+    std::array<TexCoord, 3> uv;
+    float lowest = 1, highest = 0;
+    for (int k = 0; k < 3; ++k) {
+      uv[k] = lon_lat(sphere.positions[f[k]]);
+      lowest = std::min(lowest, uv[k][0]), highest = std::max(highest, uv[k][0]);
+    }
+    for (auto& c : uv)
+      if (highest - lowest > 0.5f && c[0] < 0.5f) c[0] += 1;
+    for (const TexCoord& c : uv) obj += "vt " + std::to_string(c[0]) + " " + std::to_string(c[1]) + "\n";
+    obj += "f";
+    for (int k = 0; k < 3; ++k) obj += " " + std::to_string(f[k] + 1) + "/" + std::to_string(vt + k + 1);
+    obj += "\n";
+    vt += 3;
+  }
+  const std::string in = write("lonlat.obj", obj);
+  write("t.mtl", "newmtl lonlat\nKd 1 1 1\nmap_Kd lonlat.png\n");
+  Image image;
+  image.width = 256, image.height = 256;
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x) image.rgba.insert(image.rgba.end(), {std::uint8_t(x), std::uint8_t(255 - y), 0, 255});
+  write_png(p("lonlat.png"), image);
+
+  const std::pair<std::string, std::string> runs[] = {
+      {"simplify " + in + " " + p("u.obj") + " --faces 150", p("u.obj")},
+      {"simplify " + in + " " + p("a.obj") + " --adaptive --auto-halt", p("a.obj")},
+      {"convert " + in + " " + p("c.obj"), p("c.obj")}};
+  for (const auto& [command, obj_out] : runs) {
+    SCOPED_TRACE(command);
+    const CliRun r = run(command);
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out.find("not carried"), std::string::npos) << r.out;
+    const MeshFile f = read_mesh(obj_out);
+    ASSERT_EQ(f.texture.triangles.size(), 2 * f.quads.size());
+    ASSERT_EQ(f.texture.images, std::vector<std::string>{texture_path_of(obj_out)});
+    const Image baked = read_image(f.texture.images[0]);
+    std::size_t checked = 0;
+    for (std::size_t i = 0; i < f.quads.size(); ++i) {
+      // The middle of the tile is the middle of the quad's diagonal 0-2 (its first triangle's
+      // corners 0 and 2), as the fan splits it.
+      const auto& c = f.texture.coords[2 * i];
+      const auto& t = f.texture.triangles[2 * i];
+      const Vec3 mid = (f.positions[t[0]] + f.positions[t[2]]) / 2;
+      const TexCoord want = lon_lat(mid);
+      // At the seam either side's red; at the poles the input's own longitudes are skewed.
+      if (want[0] < 0.05f || want[0] > 0.95f || std::abs(mid.normalized().z()) > 0.9) continue;
+      const int x = int((c[0][0] + c[2][0]) / 2 * float(baked.width));
+      const int y = int((1 - (c[0][1] + c[2][1]) / 2) * float(baked.height));
+      const std::uint8_t* got = &baked.rgba[4 * std::size_t(y * baked.width + x)];
+      EXPECT_NEAR(got[0], 256 * want[0] - 0.5, 6) << "quad " << i << " at " << mid.transpose();
+      EXPECT_NEAR(got[1], 256 * want[1] - 0.5, 6) << "quad " << i << " at " << mid.transpose();
+      ++checked;
+    }
+    EXPECT_GT(checked, f.quads.size() / 2);  // the others lie at a pole or the seam
+  }
+  const CliRun r = run("simplify " + in + " " + p("u.ply") + " --faces 150");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("the input's texture is written with .obj output only"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(p("u_texture.png")) && fs::last_write_time(p("u_texture.png")) > fs::last_write_time(p("a.obj")));
+}
+
+// Texture coordinates without an image for every face are not carried: the log says so,
+// and names MeshLab's transfer.
 TEST_F(Cli, texture_coordinates_left_behind_are_logged) {
   const std::string obj = write("t.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\n"
                                          "f 1/1 2/2 3/2\nf 1/1 3/2 4/1\n");
   const CliRun r = run("convert " + obj + " " + p("t.ply"));
   ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("its texture coordinates are not carried to the quads; MeshLab's \"Transfer: Texture to "
-                       "Vertex Color"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("its texture coordinates are not carried to the quads (not every face has coordinates and "
+                       "an image); MeshLab's \"Transfer: Texture to Vertex Color"), std::string::npos) << r.out;
   EXPECT_EQ(run("convert " + input_ + " " + p("s.ply")).out.find("not carried"), std::string::npos);
 }
 

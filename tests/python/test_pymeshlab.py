@@ -429,6 +429,31 @@ def test_the_clis_files_load_with_their_quads_and_colours(bunny_path, cli, tmp_p
         assert out.has_vertex_color() and np.ptp(out.vertex_color_matrix()[:, 0]) > 0.5, name
 
 
+def test_the_clis_textured_obj_shows_the_inputs_texture(cli, tmp_path):
+    """The CLI bakes a textured input's texture onto its quads (an atlas of its own, OBJ): MeshLab reads the
+    quads with it, and its colours on the input's vertices, through MeshLab's own texture transfer, are those
+    of the input's texture (pymeshlab's textured bunny, a test card of flat colours)."""
+    sample = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny10k_textured.obj"
+    out = tmp_path / "q.obj"
+    subprocess.run([cli, "simplify", str(sample), str(out), "--faces", "1000", "-q"], check=True,
+                   stdout=subprocess.DEVNULL)
+    assert (tmp_path / "q_texture.png").is_file()
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(sample))
+    ms.load_new_mesh(str(out))
+    quads = ms.current_mesh()
+    assert len(quads.polygonal_face_list()) == 1000 and is_pure_quad(quads) and quads.has_wedge_tex_coord()
+    for _ in range(2):
+        ms.load_new_mesh(str(sample))
+    ms.transfer_texture_to_color_per_vertex(sourcemesh=0, targetmesh=2)
+    ms.transfer_texture_to_color_per_vertex(sourcemesh=1, targetmesh=3)
+    want, got = ms.mesh(2).vertex_color_matrix()[:, :3], ms.mesh(3).vertex_color_matrix()[:, :3]
+    off = np.abs(want - got).max(axis=1) * 255
+    # Vertices near a line between two of the card's colours may take the other side's: 91% within an eighth of
+    # the range when written.
+    assert np.median(off) < 1 and np.mean(off <= 32) > 0.85, (np.median(off), np.mean(off <= 32))
+
+
 def test_quads_from_meshlabs_own_triangle_pairing(bunny_path):
     # MeshLab's smart pairing leaves doublets (two quads on two shared edges) that a
     # split along each quad's shorter diagonal turned into a non-manifold edge.

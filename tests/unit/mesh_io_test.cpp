@@ -16,6 +16,7 @@
 
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/prepare_input.h"
+#include "quadsimp/io/images.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/mesh/clean.h"
 #include "quadsimp/mesh/mesh_file.h"
@@ -264,6 +265,77 @@ TEST_F(MeshIo, obj_face_colours_come_from_its_materials) {
     EXPECT_FALSE(read_mesh(write("n.obj", "mtllib a.mtl b.mtl\n" + v + faces)).has_face_colours());
   }
   EXPECT_FALSE(read_mesh(write("n.obj", "mtllib none.mtl\n" + v + "usemtl blue\nf 1 2 3 4\n")).has_face_colours());
+}
+
+// OBJ's texture: its faces' corners' coordinates ("v/vt", "v/vt/vn", counted back from -1
+// too) into the images of their materials' map_Kd (options before the name, spaces in
+// it, Windows' separators; relative to the material file), the faces fanned as read.
+TEST_F(MeshIo, obj_textures_are_read_with_their_images) {
+  fs::create_directories(path("maps/sub"));
+  write("maps/m.mtl", "newmtl a\nKd 1 1 1\nmap_Kd -s 1 1 1 sub\\wall.png\nnewmtl b b\nmap_Kd my floor.png\n"
+                      "newmtl plain\nKd 1 0 0\n");
+  write("maps/my floor.png", "");
+  const std::string v = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n";
+  const std::string vt = "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.25 0\n";
+  const MeshFile f = read_mesh(write("t.obj", "mtllib maps/m.mtl\n" + v + vt + "vn 0 0 1\n"
+                                     "usemtl a\nf 1/1/1 2/2/1 3/3/1 4/4/1\nusemtl b b\nf 2/-4 5/-1 3/-3\n"));
+  EXPECT_TRUE(f.texture_coordinates);
+  ASSERT_EQ(f.texture.triangles.size(), 3u);
+  EXPECT_EQ(f.texture.triangles, (std::vector<std::array<Index, 3>>{{0, 1, 2}, {0, 2, 3}, {1, 4, 2}}));
+  EXPECT_EQ(f.texture.coords[1], (std::array<TexCoord, 3>{TexCoord{0, 0}, TexCoord{1, 1}, TexCoord{0, 1}}));
+  EXPECT_EQ(f.texture.coords[2], (std::array<TexCoord, 3>{TexCoord{1, 0}, TexCoord{0.5f, 0.25f}, TexCoord{1, 1}}));
+  EXPECT_EQ(f.texture.image, (std::vector<int>{0, 0, 1}));
+  ASSERT_EQ(f.texture.images.size(), 2u);
+  EXPECT_EQ(fs::path(f.texture.images[0]), dir_ / "maps/sub/wall.png");
+  EXPECT_EQ(fs::path(f.texture.images[1]), dir_ / "maps/my floor.png");
+  EXPECT_EQ(f.quads.size(), 1u);  // the mesh itself as before
+  // No texture, the mesh read all the same, where a face has a corner without coordinates,
+  // one naming none, or no textured material; or where coordinates are not numbers.
+  for (const std::string& faces : {std::string("usemtl a\nf 1/1 2 3/3\n"), std::string("usemtl a\nf 1/1 2/9 3/3\n"),
+                                   std::string("usemtl a\nf 1//1 2//1 3//1\n"),
+                                   std::string("usemtl plain\nf 1/1 2/2 3/3\n"), std::string("f 1/1 2/2 3/3\n"),
+                                   std::string("vt x 1\nusemtl a\nf 1/1 2/2 3/3\n")}) {
+    SCOPED_TRACE(faces);
+    const MeshFile g = read_mesh(write("n.obj", "mtllib maps/m.mtl\n" + v + vt + faces));
+    EXPECT_TRUE(g.texture.empty());
+    EXPECT_TRUE(g.texture_coordinates);
+    EXPECT_EQ(g.triangles.size(), 1u);
+  }
+}
+
+// A texture written with the quads (OBJ: coordinates four to a face, its image named by
+// the material file) reads back as it was; other formats take none, and a refused OBJ
+// leaves no image or material file behind.
+TEST_F(MeshIo, textures_round_trip_through_obj) {
+  const QuadMesh m = grid_with_a_tombstone();
+  QuadTexture t;
+  t.image.width = 3, t.image.height = 2;
+  t.image.rgba = {1, 2, 3, 255, 4, 5, 6, 255, 7, 8, 9, 255, 10, 11, 12, 255, 13, 14, 15, 255, 16, 17, 18, 255};
+  t.corners.resize(m.face_capacity());
+  for (Index f = 0; f < m.face_capacity(); ++f)
+    for (int k = 0; k < 4; ++k) t.corners[f][std::size_t(k)] = {float(f) / 7, 1.f / float(k + 3)};
+  const std::string p = path("textured quads.obj");
+  write_quad_mesh(p, m, {}, t);
+  EXPECT_EQ(texture_path_of(p), path("textured quads_texture.png"));
+  const MeshFile f = read_mesh(p);
+  ASSERT_EQ(f.quads.size(), m.n_faces());
+  ASSERT_EQ(f.texture.triangles.size(), 2 * f.quads.size());
+  ASSERT_EQ(f.texture.images.size(), 1u);
+  EXPECT_EQ(f.texture.images[0], texture_path_of(p));
+  for (std::size_t i = 0; i < f.quads.size(); ++i) {
+    const auto& c = t.corners[i + 1];  // face 0 is the tombstone
+    EXPECT_EQ(f.texture.coords[2 * i], (std::array<TexCoord, 3>{c[0], c[1], c[2]})) << i;
+    EXPECT_EQ(f.texture.coords[2 * i + 1], (std::array<TexCoord, 3>{c[0], c[2], c[3]})) << i;
+  }
+  const Image back = read_image(texture_path_of(p));
+  EXPECT_EQ(back.width, 3);
+  EXPECT_EQ(back.height, 2);
+  EXPECT_EQ(back.rgba, t.image.rgba);
+  EXPECT_THROW(write_quad_mesh(path("t.ply"), m, {}, t), std::invalid_argument);
+  fs::create_directories(path("taken.obj"));  // the OBJ cannot replace a folder
+  EXPECT_THROW(write_quad_mesh(path("taken.obj"), m, {}, t), InvalidInput);
+  EXPECT_FALSE(fs::exists(texture_path_of(path("taken.obj"))));
+  EXPECT_FALSE(fs::exists(path("taken.obj.mtl")));
 }
 
 TEST_F(MeshIo, every_format_keeps_every_bit_of_tiny_and_far_coordinates) {
@@ -599,7 +671,10 @@ TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
       {"c.off", "COFF\n7 3 0\n0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 1 2 3\n0.5 2 0 4 5 6\n"
                 "2 0 0 0.5 0.5 0.5\n2 1 0 1 1 1\n4 0 1 2 3 255 0 0\n3 1 5 6 0.1 0.2 0.3 1\n3 1 6 2 1 2 3 4\n"},
       {"c.obj", "mtllib m.mtl\n" + obj + "vt 0 0\nusemtl red\nf 1/1 2/1 3/1 4/1\nusemtl blue one\nf 2 6 7\nf 2 7 3\n"},
+      // A texture (x.mtl, damaged too, names x.png).
+      {"x.obj", "mtllib x.mtl\n" + obj + "vt 0 0\nvt 1 0\nvt 1 1\nusemtl t\nf 1/1 2/2 3/3 4/1\nf 2/2 6/3 7/-1\n"},
   };
+  write_png(path("x.png"), Image{2, 1, {255, 0, 0, 255, 0, 0, 255, 128}});
   const std::string mtl = "newmtl red\nKd 1 0 0\nd 0.5\nnewmtl blue one\nKd 0 0 1\nnewmtl t\nmap_Kd t.png\n";
   const std::vector<std::string> nasty = {"-1", "0", "7", "100000000", "-100000000", "2147483647", "-2147483648",
                                           "4294967296", "nan", "inf", "1e308", "x", "", "#", "/", "3", "5", "255",
@@ -632,12 +707,18 @@ TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
   };
   for (int round = 0; round < 250; ++round) {
     write("m.mtl", damaged(mtl, false));
+    write("x.mtl", damaged("newmtl t\nKd 1 1 1\nmap_Kd x.png\n", false));
     for (const auto& [name, seed] : seeds) {
       const std::string text = damaged(seed, name[0] == 'b');
       const std::string file = write(std::to_string(round) + name, text);
       try {
         const Input in = load_input(file);
-        colours_of_quads(in.colour_source, in.quads);
+        colours_of_quads(in.source, in.quads);
+        try {
+          texture_of_quads(in.source, in.quads);
+        } catch (const InvalidInput& e) {  // the material file damaged: an image that is not one
+          EXPECT_EQ(std::string(e.what()).rfind(dir_.string(), 0), 0u) << e.what();
+        }
         ++loaded;
       } catch (const InvalidInput& e) {
         ++refused;

@@ -52,11 +52,12 @@ Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions
   in.was_pure_quad = file.is_pure_quad() && !repaired;
   if (file.is_pure_quad() && repaired && log)
     log(name + ": the quads needed the repairs above; their triangles are paired into quads again");
-  if (file.texture_coordinates && log)
-    log(name + ": its texture coordinates are not carried to the quads; MeshLab's \"Transfer: Texture to Vertex "
-               "Color (1 or 2 meshes)\" colours the quads from the texture (pymeshlab: "
-               "transfer_texture_to_color_per_vertex)");
-  const bool coloured = !file.colours.empty() || file.has_face_colours();  // kept whole (colour_source)
+  if (file.texture_coordinates && file.texture.empty() && log)
+    log(name + ": its texture coordinates are not carried to the quads (not every face has coordinates and an "
+               "image); MeshLab's \"Transfer: Texture to Vertex Color (1 or 2 meshes)\" colours the quads from the "
+               "texture (pymeshlab: transfer_texture_to_color_per_vertex)");
+  // Kept whole (Input::source).
+  const bool coloured = !file.colours.empty() || file.has_face_colours() || !file.texture.empty();
   if (in.was_pure_quad) {
     try {
       in.quads = QuadMesh::from_faces(coloured ? file.positions : std::move(file.positions), file.quads);
@@ -67,7 +68,7 @@ Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions
   } else {
     in.quads = tri_to_quad(in.reference, options, &in.convert);
   }
-  if (coloured) in.colour_source = std::move(file);
+  if (coloured) in.source = std::move(file);
   return in;
 }
 

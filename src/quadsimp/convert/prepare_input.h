@@ -19,9 +19,10 @@ struct Input {
   bool was_pure_quad = false;  //!< the input's quads were taken as they are
   CleanReport clean;
   ConvertReport convert;   //!< empty when the input was already pure quad
-  //! The mesh as given, kept only when it has vertex or face colours: preparing it merges,
-  //! splits and moves vertices, and the quads take their colours from it (colours_of_quads()).
-  MeshFile colour_source;
+  //! The mesh as given, kept only when it has vertex or face colours or a texture:
+  //! preparing it merges, splits and moves vertices, and the quads take their colours
+  //! (colours_of_quads()) and texture (texture_of_quads()) from it.
+  MeshFile source;
 };
 
 //! Repairs what has a standard repair (logged through `log`) and converts triangles

@@ -8,6 +8,7 @@
 #include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/mesh/quad_mesh.h"
 #include "quadsimp/mesh/tri_mesh.h"
+#include "quadsimp/texture/texture_bake.h"
 
 namespace qs {
 
@@ -30,10 +31,16 @@ struct QuadColours {
 
 //! Writes the quads of `mesh` as PLY (binary), OBJ or OFF, chosen by extension, with
 //! their `colours` if given (OBJ, as MeshLab writes them: the vertices' after the
-//! coordinates, the faces' as materials in PATH.mtl). The file appears atomically:
-//! written to a temporary beside it, then renamed.
+//! coordinates, the faces' as materials in PATH.mtl), and for OBJ their `texture` if
+//! given (its image in texture_path_of(PATH), named by the materials' map_Kd; MeshLab
+//! reads no texture on a PLY's quads). Each file appears atomically: written to a
+//! temporary beside it, then renamed.
 //! \throw InvalidInput for an unknown extension or a file that cannot be written.
-void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadColours& colours = {});
+void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadColours& colours = {},
+                     const QuadTexture& texture = {});
+
+//! Where write_quad_mesh() puts an OBJ's texture: "DIR/NAME_texture.png" for DIR/NAME.obj.
+std::string texture_path_of(const std::string& obj_path);
 
 //! The colours of `from` (read_mesh()'s) on the quads, as the MeshLab filters give them
 //! (surface_colours.h): each vertex the vertex colour at its closest point on `from`'s

@@ -4,7 +4,9 @@
 // 0, followed face corners naming no vertex into memory it did not own (a crash),
 // dropped a triangle naming a later vertex without a word, and read a comment after a
 // face's corners as more corners. It also took 2.7 s on a 1.1M-triangle file.
+#include <algorithm>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string_view>
 #include <unordered_map>
@@ -23,38 +25,72 @@ std::string name_on(const detail::TextLines& line) {
   return name;
 }
 
-// The diffuse colours (Kd, with d as alpha, or Tr as 1 - alpha: MeshLab writes Tr) of an
-// .mtl file's materials, into `colours` by name, as MeshLab reads face colours from OBJ. A material with a diffuse texture
-// (map_Kd) gets none: its faces' colours are the texture's. A file that cannot be read
-// adds nothing (its faces then have no colour, and the mesh none).
-void read_materials(const std::string& path, std::unordered_map<std::string, Colour>& colours) {
+// An .mtl file's material: its diffuse colour (Kd, with d as alpha, or Tr as 1 - alpha:
+// MeshLab writes Tr), or its diffuse texture (map_Kd), whose image then colours its faces.
+struct Material {
+  std::optional<Colour> colour;
+  std::string image;  // a path readable from here, or none
+};
+
+// map_Kd's image: the rest of the line, which may hold spaces, if that names a file; else
+// its last field, after any options ("-s 1 1 1 wall.png"). Named relative to the material
+// file's folder, with Windows' separators too.
+std::string image_on(const detail::TextLines& line, const std::filesystem::path& folder) {
+  const auto path_of = [&](std::string name) {
+    std::replace(name.begin(), name.end(), '\\', '/');
+    return (folder / name).string();
+  };
+  std::error_code ec;
+  if (const std::string whole = path_of(name_on(line)); std::filesystem::is_regular_file(whole, ec)) return whole;
+  return path_of(std::string(line[line.size() - 1]));
+}
+
+// The materials of an .mtl file, into `materials` by name, as MeshLab reads them. A file
+// that cannot be read adds nothing (its faces then have no colour, and the mesh none).
+void read_materials(const std::string& path, std::unordered_map<std::string, Material>& materials) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return;
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   detail::TextLines in(path);
   std::string name;
-  std::optional<Colour> colour;
-  bool textured = false;
+  Material material;
   const auto keep = [&] {
-    if (!name.empty() && colour && !textured) colours[name] = *colour;
+    if (name.empty()) return;
+    if (!material.image.empty()) material.colour.reset();  // its faces' colours are the texture's
+    materials[name] = material;
   };
   while (in.next()) {
     const std::string_view kw = in[0];
     if (kw == "newmtl") {
       keep();
-      name = name_on(in), colour.reset(), textured = false;
+      name = name_on(in), material = Material();
     } else if (kw == "Kd") {
       Colour c;
-      const std::uint8_t alpha = colour ? (*colour)[3] : 255;
-      colour = in.colour(1, true, c) ? std::optional<Colour>(c) : std::nullopt;
-      if (colour) (*colour)[3] = alpha;
-    } else if ((kw == "d" || kw == "Tr") && in.size() == 2 && colour) {
+      const std::uint8_t alpha = material.colour ? (*material.colour)[3] : 255;
+      material.colour = in.colour(1, true, c) ? std::optional<Colour>(c) : std::nullopt;
+      if (material.colour) (*material.colour)[3] = alpha;
+    } else if ((kw == "d" || kw == "Tr") && in.size() == 2 && material.colour) {
       double x;
-      if (parse_number(in[1], x)) (*colour)[3] = colour_byte(255 * (kw == "d" ? x : 1 - x));
-    } else if (kw == "map_Kd") {
-      textured = true;
+      if (parse_number(in[1], x)) (*material.colour)[3] = colour_byte(255 * (kw == "d" ? x : 1 - x));
+    } else if (kw == "map_Kd" && in.size() > 1) {
+      material.image = image_on(in, folder);
     }
   }
   keep();
+}
+
+// Reads a face corner's texture coordinate number ("v/vt", "v/vt/vn"): false where it has
+// none or names none of the `n` above it.
+bool texture_corner(std::string_view corner, std::size_t n, std::size_t& index) {
+  const std::size_t slash = corner.find('/');
+  if (slash == std::string_view::npos) return false;
+  const std::string_view field = corner.substr(slash + 1, corner.find('/', slash + 1) - slash - 1);
+  long long c;
+  if (field.empty() || !parse_number(field, c)) return false;
+  const long long i = c > 0 ? c - 1 : static_cast<long long>(n) + c;
+  if (c == 0 || i < 0 || i >= static_cast<long long>(n)) return false;
+  index = std::size_t(i);
+  return true;
 }
 
 }  // namespace
@@ -69,12 +105,17 @@ MeshFile read_obj(const std::string& path) {
   std::vector<std::array<Index, 3>> triangles;
   std::vector<std::uint8_t> faux;
   // Face colours from the materials' diffuse colours; kept only if every face has one.
-  std::unordered_map<std::string, Colour> materials;
-  std::optional<Colour> material;
+  std::unordered_map<std::string, Material> materials;
+  const Material* material = nullptr;
   std::vector<Colour> face_colours;
   bool face_coloured = true;
-  bool textured = false;
+  // The texture: kept only if every face has coordinates and a material with an image.
+  bool textured = false, texture_whole = true;
+  std::vector<TexCoord> coords;
+  FileTexture texture;
+  std::map<std::string, int> image_number;
   std::vector<Index> corners;
+  std::vector<TexCoord> corner_coords;
   const auto n = [&positions] { return static_cast<long long>(positions.size()); };
   while (in.next()) {
     const std::string_view kw = in[0];
@@ -87,6 +128,7 @@ MeshFile read_obj(const std::string& path) {
       // zero-based QOBJ variant's "q" quads count from 0.
       const bool qobj = kw == "q";
       corners.clear();
+      corner_coords.clear();
       for (std::size_t i = 1; i < in.size(); ++i) {
         const long long c = in.whole_number(i, "a vertex number (a face corner)", in[i].find('/'));
         const long long index = qobj ? c : c > 0 ? c - 1 : n() + c;
@@ -94,13 +136,29 @@ MeshFile read_obj(const std::string& path) {
           in.fail("face corner " + std::to_string(c) + " names no vertex (only " + std::to_string(n()) +
                   " come before it)");
         corners.push_back(Index(index));
+        std::size_t t;
+        if (texture_whole && (texture_whole = texture_corner(in[i], coords.size(), t)))
+          corner_coords.push_back(coords[t]);
       }
       if (qobj && corners.size() != 4) in.fail("a QOBJ quad ('q') with " + std::to_string(corners.size()) + " corners");
       if (corners.size() < 3) continue;  // fewer than three corners: no face
       detail::fan(corners.data(), corners.size(), triangles, faux);
-      if (face_coloured && (face_coloured = material.has_value())) face_colours.resize(triangles.size(), *material);
+      if (face_coloured && (face_coloured = material && material->colour))
+        face_colours.resize(triangles.size(), *material->colour);
+      if (texture_whole && (texture_whole = material && !material->image.empty())) {
+        const int image = image_number.emplace(material->image, int(image_number.size())).first->second;
+        for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
+          texture.triangles.push_back({corners[0], corners[i], corners[i + 1]});
+          texture.coords.push_back({corner_coords[0], corner_coords[i], corner_coords[i + 1]});
+          texture.image.push_back(image);
+        }
+      }
     } else if (kw == "vt") {
       textured = true;
+      // Coordinates that are not numbers leave the texture out, not the mesh.
+      double u = 0, v = 0;
+      texture_whole = texture_whole && in.size() > 1 && parse_number(in[1], u) && (in.size() < 3 || parse_number(in[2], v));
+      coords.push_back({float(u), float(v)});
     } else if (kw == "mtllib") {
       // Material files are named relative to the OBJ's folder, several to a line, or one
       // whose name has spaces (as we and MeshLab write an OBJ's named so).
@@ -109,13 +167,18 @@ MeshFile read_obj(const std::string& path) {
       if (in.size() > 2) read_materials((folder / name_on(in)).string(), materials);
     } else if (kw == "usemtl") {
       const auto it = materials.find(name_on(in));
-      material = it != materials.end() ? std::optional<Colour>(it->second) : std::nullopt;
+      material = it != materials.end() ? &it->second : nullptr;
     }
   }
   if (!face_coloured) face_colours.clear();
   MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, face_colours);
   if (coloured) out.colours = std::move(colours);
   out.texture_coordinates = textured;
+  if (texture_whole && !texture.empty()) {
+    texture.images.resize(image_number.size());
+    for (const auto& [path, k] : image_number) texture.images[std::size_t(k)] = path;
+    out.texture = std::move(texture);
+  }
   return out;
 }
 

@@ -18,17 +18,19 @@
 #include <vector>
 
 #include "quadsimp/io/atomic_file.h"
+#include "quadsimp/io/images.h"
 #include "quadsimp/io/mesh_io.h"
 #include "quadsimp/util/errors.h"
 
 namespace qs {
 namespace {
 
-// A coordinate in the shortest form that reads back to the same double.
-void put_number(std::ostream& out, double x) {
+// A coordinate in the shortest form that reads back to the same double (or float).
+template <class Real>
+std::ostream& put_number(std::ostream& out, Real x) {
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  out << std::string_view(buf, std::size_t(r.ptr - buf));
+  return out << std::string_view(buf, std::size_t(r.ptr - buf));
 }
 
 // A colour channel as the fraction OBJ and MTL files write.
@@ -108,9 +110,9 @@ void write_off(const std::string& path, const QuadMesh& q, const QuadColours& co
 
 // OBJ, with vertex colours after the coordinates as fractions (the extension MeshLab reads
 // and writes), and face colours as materials, one per colour, in the file `mtl` (named as
-// it is, beside the OBJ), as MeshLab writes them.
-void write_obj(const std::string& path, const QuadMesh& q, const QuadColours& colours, const std::string& mtl,
-               const std::map<Colour, int>& materials) {
+// it is, beside the OBJ), as MeshLab writes them; a texture's coordinates four to a face.
+void write_obj(const std::string& path, const QuadMesh& q, const QuadColours& colours, const QuadTexture& texture,
+               const std::string& mtl, const std::map<Colour, int>& materials) {
   std::ofstream out(path, std::ios::binary);
   out << "# quadsimp: " << q.n_vertices() << " vertices, " << q.n_faces() << " quads\n";
   if (!materials.empty()) out << "mtllib " << mtl << '\n';
@@ -122,43 +124,60 @@ void write_obj(const std::string& path, const QuadMesh& q, const QuadColours& co
       for (std::size_t k = 0; k < 3; ++k) out << ' ' << fraction(colours.vertices[v][k]);
     out << '\n';
   }
+  const bool textured = !texture.empty();
+  for (Index f = 0; f < q.face_capacity() && textured; ++f)
+    if (q.is_face_live(f))
+      for (const TexCoord& c : texture.corners[f]) put_number(put_number(out << "vt ", c[0]) << ' ', c[1]) << '\n';
   const std::vector<Index> id = q.live_vertex_ids();
   int material = -1;
+  std::size_t corner = 0;
   for (Index f = 0; f < q.face_capacity(); ++f) {
     if (!q.is_face_live(f)) continue;
-    if (const int m = materials.empty() ? -1 : materials.at(colours.faces[f]); m != material)
+    if (const int m = materials.empty() ? -1 : colours.faces.empty() ? 0 : materials.at(colours.faces[f]); m != material)
       out << "usemtl material_" << (material = m) << '\n';
     out << 'f';
-    for (Index k = 0; k < 4; ++k) out << ' ' << id[q.vertex(f, k)] + 1;  // OBJ counts from 1
+    for (Index k = 0; k < 4; ++k) {
+      out << ' ' << id[q.vertex(f, k)] + 1;  // OBJ counts from 1
+      if (textured) out << '/' << ++corner;
+    }
     out << '\n';
   }
   if (!out.flush()) fail_file(path, "cannot be written");
 }
 
-// The materials of write_obj(): one per face colour, numbered in the order they come.
-std::map<Colour, int> materials_of(const QuadMesh& q, const std::vector<Colour>& face_colours) {
+// The materials of write_obj(): one per face colour, numbered in the order they come, or
+// a white one for a texture without them.
+std::map<Colour, int> materials_of(const QuadMesh& q, const std::vector<Colour>& face_colours, bool textured) {
   std::map<Colour, int> materials;
   for (Index f = 0; f < q.face_capacity() && !face_colours.empty(); ++f)
     if (q.is_face_live(f)) materials.emplace(face_colours[f], int(materials.size()));
+  if (materials.empty() && textured) materials.emplace(Colour{255, 255, 255, 255}, 0);
   return materials;
 }
 
-void write_mtl(const std::string& path, const std::map<Colour, int>& materials) {
+void write_mtl(const std::string& path, const std::map<Colour, int>& materials, const std::string& image) {
   std::vector<const Colour*> by_number(materials.size());
   for (const auto& [colour, k] : materials) by_number[std::size_t(k)] = &colour;
   std::ofstream out(path, std::ios::binary);
-  out << "# quadsimp: the quads' face colours\n";
+  out << "# quadsimp: the quads' face colours" << (image.empty() ? "" : " and texture") << '\n';
   for (std::size_t k = 0; k < by_number.size(); ++k) {
     const Colour& c = *by_number[k];
     out << "newmtl material_" << k << "\nKd " << fraction(c[0]) << ' ' << fraction(c[1]) << ' ' << fraction(c[2])
         << "\nd " << fraction(c[3]) << '\n';
+    if (!image.empty()) out << "map_Kd " << image << '\n';
   }
   if (!out.flush()) fail_file(path, "cannot be written");
 }
 
 }  // namespace
 
-void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadColours& colours) {
+std::string texture_path_of(const std::string& obj_path) {
+  std::filesystem::path p(obj_path);
+  return p.replace_extension().string() + "_texture.png";
+}
+
+void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadColours& colours,
+                     const QuadTexture& texture) {
   const std::string ext = extension_of(path);
   if (ext != "ply" && ext != "obj" && ext != "off")
     fail_file(path, "cannot write '" + ext + "' (quads are written as .ply, .obj or .off)");
@@ -166,23 +185,35 @@ void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadCo
     throw std::invalid_argument("write_quad_mesh: one colour per vertex id expected");
   if (!colours.faces.empty() && colours.faces.size() != mesh.face_capacity())
     throw std::invalid_argument("write_quad_mesh: one colour per face id expected");
-  // An OBJ's face colours go to a material file beside it, written first, and removed if
-  // the OBJ cannot be.
-  const std::map<Colour, int> materials = ext == "obj" ? materials_of(mesh, colours.faces) : std::map<Colour, int>();
-  const std::string mtl = path + ".mtl";
-  if (!materials.empty()) detail::write_atomically(mtl, [&](const std::string& tmp) { write_mtl(tmp, materials); });
+  const bool textured = !texture.empty();
+  if (textured && (ext != "obj" || texture.corners.size() != mesh.face_capacity()))
+    throw std::invalid_argument("write_quad_mesh: a texture goes to .obj, with coordinates per face id");
+  // An OBJ's face colours and texture go to a material file and an image beside it,
+  // written first, and removed if the OBJ cannot be.
+  const std::map<Colour, int> materials =
+      ext == "obj" ? materials_of(mesh, colours.faces, textured) : std::map<Colour, int>();
+  const std::string mtl = path + ".mtl", image = textured ? texture_path_of(path) : std::string();
+  const auto remove_beside = [&] {
+    std::error_code ec;
+    if (!materials.empty()) std::filesystem::remove(mtl, ec);
+    if (textured) std::filesystem::remove(image, ec);
+  };
   try {
+    if (textured) detail::write_atomically(image, [&](const std::string& tmp) { write_png(tmp, texture.image); });
+    if (!materials.empty())
+      detail::write_atomically(mtl, [&](const std::string& tmp) {
+        write_mtl(tmp, materials, textured ? std::filesystem::path(image).filename().string() : std::string());
+      });
     detail::write_atomically(path, [&](const std::string& tmp) {
       if (ext == "ply")
         write_ply(tmp, mesh, colours);
       else if (ext == "obj")
-        write_obj(tmp, mesh, colours, std::filesystem::path(mtl).filename().string(), materials);
+        write_obj(tmp, mesh, colours, texture, std::filesystem::path(mtl).filename().string(), materials);
       else
         write_off(tmp, mesh, colours);
     });
   } catch (...) {
-    std::error_code ec;
-    if (!materials.empty()) std::filesystem::remove(mtl, ec);
+    remove_beside();
     throw;
   }
 }

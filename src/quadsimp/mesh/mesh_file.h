@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "quadsimp/mesh/tri_mesh.h"
@@ -16,6 +17,20 @@ inline std::uint8_t colour_byte(double x) {
   return x >= 255 ? 255 : x > 0 ? std::uint8_t(x + 0.5) : 0;  // NaN: 0
 }
 
+using TexCoord = std::array<float, 2>;  //!< u, v: v = 0 at the image's bottom row, as OBJ and MeshLab have it
+
+//! A file's texture: its faces with their corners' texture coordinates, fanned into
+//! triangles of their own (a list apart from the mesh's, which cleaning may change), and
+//! the images they point into. The quads get a texture of their own, baked from it
+//! (texture_bake.h).
+struct FileTexture {
+  std::vector<std::string> images;              //!< image files, as paths readable from here
+  std::vector<std::array<Index, 3>> triangles;  //!< corners, as positions' indices
+  std::vector<std::array<TexCoord, 3>> coords;  //!< each triangle's corners' coordinates
+  std::vector<int> image;                       //!< each triangle's image
+  bool empty() const { return triangles.empty(); }
+};
+
 //! A mesh as a file or a host application holds it, before any cleaning: its quads and
 //! its other faces as triangles (a polygon of five or more corners fanned); a pure quad
 //! mesh has quads alone.
@@ -27,8 +42,10 @@ struct MeshFile {
   //! Face colours: one per triangle and one per quad, or none.
   std::vector<Colour> triangle_colours = {};
   std::vector<Colour> quad_colours = {};
-  //! The file or layer has texture coordinates, which are not carried to the quads.
+  //! The file or layer has texture coordinates.
   bool texture_coordinates = false;
+  //! Its texture, where every face has coordinates into an image; else empty.
+  FileTexture texture = {};
   bool is_pure_quad() const { return !quads.empty() && triangles.empty(); }
   bool has_face_colours() const { return !triangle_colours.empty() || !quad_colours.empty(); }
 };

@@ -1,0 +1,124 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/texture/texture_bake.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "quadsimp/reference/reference_surface.h"
+
+namespace qs {
+namespace {
+
+// Bilinear, repeating: coordinates past [0, 1] tile the image, as OBJ's do by default.
+std::array<double, 4> sample(const Image& im, TexCoord uv) {
+  // Wrapped into the image first, so that coordinates far out stay exact enough and
+  // whole; ones that are not numbers read its first texel.
+  const auto wrap = [](double x, int n) { return std::isfinite(x) ? x - n * std::floor(x / n) : 0.0; };
+  const double x = wrap(double(uv[0]) * im.width - 0.5, im.width);
+  const double y = wrap((1.0 - double(uv[1])) * im.height - 0.5, im.height);
+  const auto x0 = std::size_t(x), y0 = std::size_t(y);
+  const std::size_t xs[2] = {x0 % std::size_t(im.width), (x0 + 1) % std::size_t(im.width)};
+  const std::size_t ys[2] = {y0 % std::size_t(im.height), (y0 + 1) % std::size_t(im.height)};
+  const double fx = x - double(x0), fy = y - double(y0);
+  std::array<double, 4> c{};
+  for (int dy = 0; dy < 2; ++dy)
+    for (int dx = 0; dx < 2; ++dx) {
+      const double w = (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy);
+      const std::size_t at = 4 * (ys[dy] * std::size_t(im.width) + xs[dx]);
+      for (int k = 0; k < 4; ++k) c[k] += w * im.rgba[at + k];
+    }
+  return c;
+}
+
+// Texels the images spend on the surface: each triangle's area in texture space.
+double texels_on_surface(const FileTexture& t, const std::vector<Image>& images) {
+  double texels = 0;
+  for (std::size_t i = 0; i < t.triangles.size(); ++i) {
+    const auto& c = t.coords[i];
+    const double area = 0.5 * std::abs(double(c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) -
+                                       double(c[2][0] - c[0][0]) * (c[1][1] - c[0][1]));
+    const Image& im = images[std::size_t(t.image[i])];
+    texels += area * im.width * im.height;
+  }
+  return texels;
+}
+
+}  // namespace
+
+QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& texture,
+                         const std::vector<Image>& images, const QuadMesh& quads, const TextureBakeOptions& options) {
+  for (int i : texture.image)
+    if (i < 0 || std::size_t(i) >= images.size() || images[std::size_t(i)].empty())
+      throw std::invalid_argument("bake_texture: a triangle's image is missing");
+  std::vector<Index> faces;
+  for (Index f = 0; f < quads.face_capacity(); ++f)
+    if (quads.is_face_live(f)) faces.push_back(f);
+  QuadTexture out;
+  if (faces.empty() || texture.empty()) return out;
+
+  // Tiles in a square grid; a texel's border round each, copied from its edge, keeps
+  // filtering from reading a neighbour's tile.
+  const std::size_t n = faces.size();
+  const int columns = int(std::ceil(std::sqrt(double(n))));
+  const int rows = int((n + std::size_t(columns) - 1) / std::size_t(columns));
+  int tile = options.tile;
+  if (tile <= 0) tile = 2 + int(std::lround(std::sqrt(texels_on_surface(texture, images) / double(n))));
+  tile = std::clamp(tile, 6, 66);
+  tile = std::max(3, std::min(tile, options.max_side / std::max(columns, rows)));
+  const int inner = tile - 2;
+  Image& im = out.image;
+  im.width = columns * tile, im.height = rows * tile;
+  // Opaque black where no tile is: an opaque input gives an opaque atlas (written as RGB).
+  im.rgba.assign(std::size_t(im.width) * std::size_t(im.height) * 4, 0);
+  for (std::size_t i = 3; i < im.rgba.size(); i += 4) im.rgba[i] = 255;
+  out.corners.assign(quads.face_capacity(), {});
+
+  TriMesh soup;
+  soup.positions = positions;
+  soup.faces = texture.triangles;
+  const ReferenceSurface surface(std::move(soup));
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    const Index f = faces[i];
+    const auto p = quads.positions_of(quads.face_vertices(f));
+    const int x0 = int(i % std::size_t(columns)) * tile, y0 = int(i / std::size_t(columns)) * tile;
+    // Tile coordinates (s, t) in [0, 1]^2, t upwards: corner 0 at (0, 0), 1 at (1, 0), 2 at (1, 1).
+    const double W = im.width, H = im.height;
+    out.corners[f] = {TexCoord{float((x0 + 1) / W), float(1 - (y0 + 1 + inner) / H)},
+                      TexCoord{float((x0 + 1 + inner) / W), float(1 - (y0 + 1 + inner) / H)},
+                      TexCoord{float((x0 + 1 + inner) / W), float(1 - (y0 + 1) / H)},
+                      TexCoord{float((x0 + 1) / W), float(1 - (y0 + 1) / H)}};
+    const Vec3 normal = (p[2] - p[0]).cross(p[3] - p[1]);
+    const double reach = std::max((p[2] - p[0]).norm(), (p[3] - p[1]).norm());
+    for (int b = 0; b < inner; ++b)
+      for (int a = 0; a < inner; ++a) {
+        const double s = (a + 0.5) / inner, t = 1 - (b + 0.5) / inner;
+        const Vec3 at = s >= t ? Vec3(p[0] + s * (p[1] - p[0]) + t * (p[2] - p[1]))
+                               : Vec3(p[0] + t * (p[3] - p[0]) + s * (p[2] - p[3]));
+        SurfacePoint foot = surface.closest(at, reach, normal);
+        if (!foot.found()) foot = surface.closest(at);
+        const std::size_t k = std::size_t(foot.face);
+        const auto& c = texture.coords[k];
+        const double w0 = 1 - foot.u - foot.v;
+        const TexCoord uv{float(w0 * c[0][0] + foot.u * c[1][0] + foot.v * c[2][0]),
+                          float(w0 * c[0][1] + foot.u * c[1][1] + foot.v * c[2][1])};
+        const auto colour = sample(images[std::size_t(texture.image[k])], uv);
+        std::uint8_t* texel = &im.rgba[4 * (std::size_t(y0 + 1 + b) * std::size_t(im.width) + std::size_t(x0 + 1 + a))];
+        for (int j = 0; j < 4; ++j) texel[j] = colour_byte(colour[j]);
+      }
+    // The border: each texel a copy of the nearest inner one.
+    for (int y = 0; y < tile; ++y)
+      for (int x = 0; x < tile; ++x) {
+        if (x > 0 && x < tile - 1 && y > 0 && y < tile - 1) continue;
+        const int xi = std::clamp(x, 1, tile - 2), yi = std::clamp(y, 1, tile - 2);
+        const std::size_t from = 4 * (std::size_t(y0 + yi) * std::size_t(im.width) + std::size_t(x0 + xi));
+        const std::size_t to = 4 * (std::size_t(y0 + y) * std::size_t(im.width) + std::size_t(x0 + x));
+        std::copy_n(&im.rgba[from], 4, &im.rgba[to]);
+      }
+  });
+  return out;
+}
+
+}  // namespace qs
