@@ -227,8 +227,8 @@ TEST_F(Cli, face_colours_reach_the_quads) {
   EXPECT_TRUE(fs::exists(p("a.obj.mtl")));
 }
 
-// A texture reaches OBJ quads as one of their own: a tile per quad, each texel the input's
-// texture under it. On a sphere mapped by longitude and height (a seam where the longitude
+// A texture (an OBJ's or a PLY's) reaches OBJ quads as one of their own: a tile per quad,
+// each texel the input's texture under it. On a sphere mapped by longitude and height (a seam where the longitude
 // wraps), with an image whose red is the longitude and green the height, the texel at
 // each quad's middle has the colour of the point of the sphere under it. Other formats
 // take no texture, and say so.
@@ -238,9 +238,13 @@ TEST_F(Cli, a_texture_reaches_obj_quads) {
     const Vec3 d = p.normalized();
     return TexCoord{float(std::atan2(d.y(), d.x()) / (2 * M_PI) + 0.5), float((d.z() + 1) / 2)};
   };
-  std::string obj = "mtllib t.mtl\n";
-  for (const Vec3& v : sphere.positions)
-    obj += "v " + std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) + "\n";
+  // As OBJ (vt, a material's map_Kd) and as PLY (MeshLab's TextureFile and texcoord).
+  std::string obj = "mtllib t.mtl\n", ply_vertices, ply_faces;
+  for (const Vec3& v : sphere.positions) {
+    const std::string xyz = std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) + "\n";
+    obj += "v " + xyz;
+    ply_vertices += xyz;
+  }
   obj += "usemtl lonlat\n";
   int vt = 0;
   for (const auto& f : sphere.faces) {
@@ -255,11 +259,25 @@ TEST_F(Cli, a_texture_reaches_obj_quads) {
       if (highest - lowest > 0.5f && c[0] < 0.5f) c[0] += 1;
     for (const TexCoord& c : uv) obj += "vt " + std::to_string(c[0]) + " " + std::to_string(c[1]) + "\n";
     obj += "f";
-    for (int k = 0; k < 3; ++k) obj += " " + std::to_string(f[k] + 1) + "/" + std::to_string(vt + k + 1);
+    ply_faces += "3";
+    for (int k = 0; k < 3; ++k) {
+      obj += " " + std::to_string(f[k] + 1) + "/" + std::to_string(vt + k + 1);
+      ply_faces += " " + std::to_string(f[k]);
+    }
+    ply_faces += " 6";
+    for (const TexCoord& c : uv) ply_faces += " " + std::to_string(c[0]) + " " + std::to_string(c[1]);
     obj += "\n";
+    ply_faces += "\n";
     vt += 3;
   }
   const std::string in = write("lonlat.obj", obj);
+  const std::string in_ply = write("lonlat.ply", "ply\nformat ascii 1.0\ncomment TextureFile lonlat.png\nelement vertex " +
+                                                     std::to_string(sphere.n_vertices()) +
+                                                     "\nproperty float x\nproperty float y\nproperty float z\n"
+                                                     "element face " + std::to_string(sphere.n_faces()) +
+                                                     "\nproperty list uchar int vertex_indices\n"
+                                                     "property list uchar float texcoord\nend_header\n" +
+                                                     ply_vertices + ply_faces);
   write("t.mtl", "newmtl lonlat\nKd 1 1 1\nmap_Kd lonlat.png\n");
   Image image;
   image.width = 256, image.height = 256;
@@ -270,7 +288,8 @@ TEST_F(Cli, a_texture_reaches_obj_quads) {
   const std::pair<std::string, std::string> runs[] = {
       {"simplify " + in + " " + p("u.obj") + " --faces 150", p("u.obj")},
       {"simplify " + in + " " + p("a.obj") + " --adaptive --auto-halt", p("a.obj")},
-      {"convert " + in + " " + p("c.obj"), p("c.obj")}};
+      {"convert " + in + " " + p("c.obj"), p("c.obj")},
+      {"simplify " + in_ply + " " + p("p.obj") + " --faces 150", p("p.obj")}};
   for (const auto& [command, obj_out] : runs) {
     SCOPED_TRACE(command);
     const CliRun r = run(command);

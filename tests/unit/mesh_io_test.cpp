@@ -303,6 +303,47 @@ TEST_F(MeshIo, obj_textures_are_read_with_their_images) {
   }
 }
 
+// PLY's texture, as MeshLab writes it: "comment TextureFile NAME" lines (relative to the
+// file; spaces in a name), coordinates per face corner (texcoord) or per vertex
+// (texture_u, texture_v), and the image a face's texnumber names.
+TEST_F(MeshIo, ply_textures_are_read_with_their_images) {
+  const std::string square = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n";
+  const auto header = [](const std::string& comments, const std::string& vertex, const std::string& face) {
+    return "ply\nformat ascii 1.0\n" + comments + "element vertex 5\nproperty float x\nproperty float y\n"
+           "property float z\n" + vertex + "element face 2\nproperty list uchar int vertex_indices\n" + face +
+           "end_header\n";
+  };
+  const std::string two = "comment TextureFile wall.png\ncomment made by hand\ncomment TextureFile maps/my floor.png\n";
+  const MeshFile f = read_mesh(write("c.ply", header(two, "", "property list uchar float texcoord\nproperty int texnumber\n") +
+                                                  square + "4 0 1 2 3 8 0 0 1 0 1 1 0 1 0\n3 1 4 2 6 1 0 0.5 0.25 1 1 1\n"));
+  EXPECT_TRUE(f.texture_coordinates);
+  EXPECT_EQ(f.texture.triangles, (std::vector<std::array<Index, 3>>{{0, 1, 2}, {0, 2, 3}, {1, 4, 2}}));
+  EXPECT_EQ(f.texture.coords[1], (std::array<TexCoord, 3>{TexCoord{0, 0}, TexCoord{1, 1}, TexCoord{0, 1}}));
+  EXPECT_EQ(f.texture.coords[2], (std::array<TexCoord, 3>{TexCoord{1, 0}, TexCoord{0.5f, 0.25f}, TexCoord{1, 1}}));
+  EXPECT_EQ(f.texture.image, (std::vector<int>{0, 0, 1}));
+  EXPECT_EQ(f.texture.images, (std::vector<std::string>{path("wall.png"), path("maps/my floor.png")}));
+  const MeshFile v = read_mesh(write("v.ply", header("comment TextureFile wall.png\n",
+                                                    "property float texture_u\nproperty float texture_v\n", "") +
+                                                 "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n2 0 0 2 0\n"
+                                                 "4 0 1 2 3\n3 1 4 2\n"));
+  EXPECT_EQ(v.texture.triangles.size(), 3u);
+  EXPECT_EQ(v.texture.coords[2], (std::array<TexCoord, 3>{TexCoord{1, 0}, TexCoord{2, 0}, TexCoord{1, 1}}));
+  EXPECT_EQ(v.texture.image, (std::vector<int>(3, 0)));
+  // No texture, the mesh read all the same: no image named, a texnumber past them, a face
+  // without its coordinates.
+  const std::string corners = "property list uchar float texcoord\nproperty int texnumber\n";
+  for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+           {"none.ply", header("", "", corners) + square + "4 0 1 2 3 8 0 0 1 0 1 1 0 1 0\n3 1 4 2 6 1 0 0.5 0.25 1 1 0\n"},
+           {"past.ply", header(two, "", corners) + square + "4 0 1 2 3 8 0 0 1 0 1 1 0 1 2\n3 1 4 2 6 1 0 0.5 0.25 1 1 0\n"},
+           {"short.ply", header(two, "", corners) + square + "4 0 1 2 3 8 0 0 1 0 1 1 0 1 0\n3 1 4 2 4 1 0 0.5 0.25 0\n"}}) {
+    SCOPED_TRACE(name);
+    const MeshFile g = read_mesh(write(name, text));
+    EXPECT_TRUE(g.texture.empty());
+    EXPECT_TRUE(g.texture_coordinates);
+    EXPECT_EQ(g.quads.size(), 1u);
+  }
+}
+
 // A texture written with the quads (OBJ: coordinates four to a face, its image named by
 // the material file) reads back as it was; other formats take none, and a refused OBJ
 // leaves no image or material file behind.
@@ -673,6 +714,10 @@ TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
       {"c.obj", "mtllib m.mtl\n" + obj + "vt 0 0\nusemtl red\nf 1/1 2/1 3/1 4/1\nusemtl blue one\nf 2 6 7\nf 2 7 3\n"},
       // A texture (x.mtl, damaged too, names x.png).
       {"x.obj", "mtllib x.mtl\n" + obj + "vt 0 0\nvt 1 0\nvt 1 1\nusemtl t\nf 1/1 2/2 3/3 4/1\nf 2/2 6/3 7/-1\n"},
+      {"x.ply", "ply\nformat ascii 1.0\ncomment TextureFile x.png\nelement vertex 7\nproperty float x\n"
+                "property float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\n"
+                "property list uchar float texcoord\nproperty int texnumber\nend_header\n" + corners +
+                "4 0 1 2 3 8 0 0 1 0 1 1 0 1 0\n3 1 5 6 6 1 0 0.5 0.25 1 1 0\n"},
   };
   write_png(path("x.png"), Image{2, 1, {255, 0, 0, 255, 0, 0, 255, 128}});
   const std::string mtl = "newmtl red\nKd 1 0 0\nd 0.5\nnewmtl blue one\nKd 0 0 1\nnewmtl t\nmap_Kd t.png\n";

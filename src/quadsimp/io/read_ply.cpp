@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -149,6 +150,7 @@ struct Header {
   Values::Format format = Values::Format::ascii;
   std::size_t data = 0;
   long long grid_cols = -1, grid_rows = -1;  // a range grid's size ("obj_info num_cols 640")
+  std::vector<std::string> textures;          // "comment TextureFile NAME" (MeshLab's), in order
 };
 
 Header read_header(const std::string& path, const std::string& file) {
@@ -169,6 +171,14 @@ Header read_header(const std::string& path, const std::string& file) {
       continue;
     }
     if (f.empty()) continue;
+    if (f[0] == "comment" && f.size() >= 3 && f[1] == "TextureFile") {
+      // The rest of the line: a name may hold spaces.
+      const std::size_t from = std::size_t(f[2].data() - file.data());
+      std::string name(file, from, eol - from);
+      while (!name.empty() && (name.back() == '\r' || name.back() == ' ' || name.back() == '\t')) name.pop_back();
+      h.textures.push_back(name);
+      continue;
+    }
     if (f[0] == "comment" || f[0] == "obj_info") {
       // A range grid's size; anything else there (a size that is no number included) is
       // text, which only a range grid, refused without its size, would miss.
@@ -221,6 +231,41 @@ Header read_header(const std::string& path, const std::string& file) {
   return h;
 }
 
+// The polygons' texture, each fanned as the mesh is: from their corners' coordinates
+// (from `first_uv`, kNoUvs: none) or their vertices' (`vertex_uvs`, one per vertex or
+// none), into the images the header names (beside the file). Empty unless every polygon
+// has coordinates and names an image.
+FileTexture texture_of_polygons(const std::string& path, const std::vector<std::string>& images,
+                                const std::vector<Index>& corners, const std::vector<std::size_t>& polygon_start,
+                                const std::vector<std::size_t>& first_uv, const std::vector<TexCoord>& corner_uvs,
+                                const std::vector<TexCoord>& vertex_uvs, const std::vector<int>& image) {
+  FileTexture t;
+  if (images.empty() || polygon_start.size() < 2) return t;
+  for (std::size_t i = 0; i + 1 < polygon_start.size(); ++i) {
+    const std::size_t from = polygon_start[i], n = polygon_start[i + 1] - from;
+    if (image[i] < 0 || std::size_t(image[i]) >= images.size()) return {};
+    const auto coord = [&](std::size_t k) -> const TexCoord* {
+      if (first_uv[i] != ~std::size_t(0)) return &corner_uvs[first_uv[i] + k];
+      const Index v = corners[from + k];
+      return v < vertex_uvs.size() ? &vertex_uvs[v] : nullptr;
+    };
+    for (std::size_t k = 1; k + 1 < n; ++k) {
+      const TexCoord *a = coord(0), *b = coord(k), *c = coord(k + 1);
+      if (!a || !b || !c) return {};
+      t.triangles.push_back({corners[from], corners[from + k], corners[from + k + 1]});
+      t.coords.push_back({*a, *b, *c});
+      t.image.push_back(image[i]);
+    }
+  }
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  for (const std::string& name : images) {
+    std::string file = name;
+    std::replace(file.begin(), file.end(), '\\', '/');
+    t.images.push_back((folder / file).string());
+  }
+  return t;
+}
+
 }  // namespace
 
 MeshFile read_ply(const std::string& path) {
@@ -234,6 +279,12 @@ MeshFile read_ply(const std::string& path) {
   std::vector<Colour> colours, face_colours;  // face_colours: one per polygon
   std::vector<std::array<Index, 3>> triangles;
   std::vector<std::uint8_t> faux;
+  // The texture: each polygon's corners' coordinates (per corner, or its vertices'), and
+  // its image (texnumber, else the first), kept only if every polygon has them.
+  std::vector<TexCoord> vertex_uvs, corner_uvs;
+  std::vector<std::size_t> polygon_uvs;  // per polygon: its first in corner_uvs, or kNoUvs
+  std::vector<int> polygon_image;
+  constexpr std::size_t kNoUvs = ~std::size_t(0);
   // Faces, flat, checked and fanned once all vertices are known (they may come first).
   std::vector<Index> corners;
   std::vector<std::size_t> polygon_start{0};
@@ -242,6 +293,8 @@ MeshFile read_ply(const std::string& path) {
     corners.insert(corners.end(), {Index(a), Index(b), Index(c)});
     polygon_start.push_back(corners.size());
     flag_faux.push_back(faux_bits);
+    polygon_uvs.push_back(kNoUvs);
+    polygon_image.push_back(0);
   };
   std::vector<long long> list;  // a strip's or a grid entry's indices (-1: none)
   std::vector<long long> grid;  // a range grid's vertex at each point, row by row (-1: none)
@@ -265,10 +318,13 @@ MeshFile read_ply(const std::string& path) {
     if (indexed && (list_at < 0 || !e.properties[std::size_t(list_at)].list))
       fail((face ? std::string("faces") : detail::quoted(e.name)) + " without a list of vertex indices");
     const int flags = face ? e.find("flags") : -1;
-    // Texture coordinates per vertex (MeshLab writes texture_u, texture_v) or per corner.
-    for (const char* uv : {"texture_u", "texture_s", "s", "u"})
-      textured |= vertex && e.find(uv) >= 0;
-    textured |= face && e.find("texcoord") >= 0;
+    // Texture coordinates per vertex (MeshLab writes texture_u, texture_v) or per corner
+    // (texcoord: u, v for each), into the image texnumber names.
+    int uv[2] = {-1, -1};
+    for (const auto& [u, v] : {std::pair{"texture_u", "texture_v"}, {"texture_s", "texture_t"}, {"s", "t"}, {"u", "v"}})
+      if (vertex && uv[0] < 0 && e.find(u) >= 0 && e.find(v) >= 0) uv[0] = e.find(u), uv[1] = e.find(v);
+    const int texcoord = face ? e.find("texcoord") : -1, texnumber = face ? e.find("texnumber") : -1;
+    textured |= uv[0] >= 0 || texcoord >= 0;
     have_vertices |= vertex;
     have_faces |= face;
     have_grid |= range;
@@ -281,7 +337,10 @@ MeshFile read_ply(const std::string& path) {
       Vec3 p = Vec3::Zero();
       Colour colour = {0, 0, 0, 255};
       std::uint32_t face_flags = 0;
-      const std::size_t first_corner = corners.size();
+      TexCoord vertex_uv = {0, 0};
+      int image = 0;
+      const std::size_t first_corner = corners.size(), first_uv = corner_uvs.size();
+      std::size_t uv_values = 0;
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const Property& prop = e.properties[k];
         double x;
@@ -295,6 +354,9 @@ MeshFile read_ply(const std::string& path) {
               colour[std::size_t(c)] = colour_byte(fraction ? 255 * x : x);
             }
           if (face && int(k) == flags) face_flags = std::uint32_t(std::int64_t(x));
+          if (face && int(k) == texnumber) image = x >= 0 && x < 1e9 ? int(x) : -1;
+          for (int c = 0; c < 2; ++c)
+            if (vertex && int(k) == uv[c]) vertex_uv[std::size_t(c)] = float(x);
           continue;
         }
         double n;
@@ -303,6 +365,10 @@ MeshFile read_ply(const std::string& path) {
         if (int(k) == list_at) list.clear();
         for (long long j = 0; j < static_cast<long long>(n); ++j) {
           if (!values.next(prop.value, x)) fail("its data ends, or is not a number, in " + detail::quoted(e.name) + " " + std::to_string(i));
+          if (int(k) == texcoord) {
+            if (uv_values++ % 2 == 0) corner_uvs.push_back({float(x), 0});
+            else corner_uvs.back()[1] = float(x);
+          }
           if (int(k) != list_at) continue;
           // Strips restart after a -1; every other index must name a vertex (checked below).
           if (!(x >= (strips ? -1 : 0) && x <= double(std::numeric_limits<Index>::max())))
@@ -332,16 +398,22 @@ MeshFile read_ply(const std::string& path) {
       }
       if (vertex) positions.push_back(p);
       if (vertex && coloured) colours.push_back(colour);
+      if (vertex && uv[0] >= 0) vertex_uvs.push_back(vertex_uv);
       if (face) {
         const std::size_t n = corners.size() - first_corner;
         if (n < 3) fail("face " + std::to_string(i) + " has " + std::to_string(n) + " corners");
         if (face_flags & 1u) {  // vcglib's deleted bit
           corners.resize(first_corner);
+          corner_uvs.resize(first_uv);
           continue;
         }
         polygon_start.push_back(corners.size());
         flag_faux.push_back(std::uint8_t((face_flags >> 18) & 7u));  // FAUX0..2 = 0x40000 << k
         if (coloured) face_colours.push_back(colour);
+        const bool has_uvs = uv_values == 2 * n;
+        if (!has_uvs) corner_uvs.resize(first_uv);
+        polygon_uvs.push_back(has_uvs ? first_uv : kNoUvs);
+        polygon_image.push_back(image);
       }
     }
   }
@@ -376,9 +448,12 @@ MeshFile read_ply(const std::string& path) {
     if (n == 3) faux[first] |= flag_faux[i];  // the bits name a triangle's edges
     if (face_coloured) triangle_colours.resize(faux.size(), face_colours[i]);
   }
+  FileTexture texture = texture_of_polygons(path, header.textures, corners, polygon_start, polygon_uvs, corner_uvs,
+                                            vertex_uvs, polygon_image);
   MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, triangle_colours);
   out.colours = std::move(colours);
   out.texture_coordinates = textured;
+  out.texture = std::move(texture);
   return out;
 }
 

@@ -16,13 +16,15 @@ namespace qs {
 MeshFile read_off(const std::string& path);
 
 //! OBJ: "v" and "f" lines (corners from 1, or back from -1; "q": QOBJ's zero-based
-//! quads), vertex colours after the coordinates, and face colours from the materials'
-//! diffuse colours; normals, texture coordinates and groups ignored.
+//! quads), vertex colours after the coordinates, face colours from the materials'
+//! diffuse colours, and the texture ("vt", corners "v/vt", the materials' map_Kd images);
+//! normals and groups ignored.
 MeshFile read_obj(const std::string& path);
 
 //! PLY, ASCII or binary: vertex x, y, z and colours, the faces' corner lists, flags and
-//! colours, and old Stanford files' triangle strips and range grids (a quad per cell of
-//! four points).
+//! colours, old Stanford files' triangle strips and range grids (a quad per cell of four
+//! points), and the texture as MeshLab writes it ("comment TextureFile" images, texcoord
+//! per face corner or texture_u/v per vertex, texnumber).
 MeshFile read_ply(const std::string& path);
 
 }  // namespace qs
