@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <filesystem>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -38,12 +39,71 @@ std::string layer_name(const Model& m) {
   return label.empty() ? "layer " + std::to_string(m.id()) : label;
 }
 
+//! A layer's texture, kept to bake onto its quads: the layer changes (convert) or its
+//! vertices are renumbered (prepare_input()) meanwhile.
+struct LayerTexture {
+  std::vector<Vec3> positions;
+  FileTexture texture;
+  std::vector<Image> images;
+  bool empty() const { return texture.empty(); }
+};
+
+//! How a MeshLab generation keeps textures, which the two do not share: `load(model*)` gives
+//! a layer's images, one per entry of its cm.textures (an empty Image where one cannot be
+//! had); `store(input model*, quads model*, name, image)` gives the quads' layer its one
+//! texture, and says why not if it cannot ("" when it has).
+template <class Load, class Store>
+struct TextureStore {
+  Load load;
+  Store store;
+};
+template <class Load, class Store>
+TextureStore<Load, Store> texture_store(Load load, Store store) {
+  return {load, store};
+}
+
+//! The layer's texture where every face has coordinates and a texture that loads.
+template <class Model, class Textures>
+LayerTexture layer_texture(Model* m, const MeshFile& file, Textures& textures) {
+  if (!file.texture_coordinates) return {};
+  const bool wedge = m->hasDataMask(Model::MM_WEDGTEXCOORD);
+  LayerTexture t;
+  t.texture = texture_of(m->cm, wedge, std::vector<std::string>(m->cm.textures.begin(), m->cm.textures.end()));
+  if (t.texture.empty()) return {};
+  t.images = textures.load(m);
+  for (const int i : t.texture.image)
+    if (t.images[std::size_t(i)].empty()) return {};
+  t.positions = file.positions;
+  return t;
+}
+
+//! Bakes `t` onto the quads `q` that `result` holds (assign_quads()), as texture
+//! coordinates into a texture of their own named after the input layer.
+template <class Model, class Textures>
+void bake_onto(const LayerTexture& t, const QuadMesh& q, Model* input, Model* result, Textures& textures,
+               const std::string& name, Outcome& out) {
+  if (t.empty()) return;
+  TextureBakeOptions options;
+  options.split = split_diagonals(q);
+  const QuadTexture baked = bake_texture(t.positions, t.texture, t.images, q, options);
+  const std::string file = std::filesystem::path(name).stem().string() + "_quads_texture.png";
+  if (const std::string why = textures.store(input, result, file, baked.image); !why.empty()) {
+    out.log.push_back("the texture is not carried to the quads: " + why);
+    return;
+  }
+  result->updateDataMask(Model::MM_WEDGTEXCOORD);
+  assign_texture(result->cm, q, baked);
+  out.log.push_back("texture baked onto the quads: " + file + ", " + std::to_string(baked.image.width) + " x " +
+                    std::to_string(baked.image.height) + " texels, a tile for each quad");
+}
+
 //! Runs filter `id` on the current layer of `md`. `update_box(model*)` recomputes a
 //! layer's bounding box and normals; `reference_layer()` returns the layer chosen as
-//! ReferenceMesh (nullptr if none). \throw InvalidInput, std::invalid_argument.
-template <class Document, class ParameterList, class CallBack, class UpdateBox, class ReferenceLayer>
+//! ReferenceMesh (nullptr if none); `textures` is texture_store()'s.
+//! \throw InvalidInput, std::invalid_argument.
+template <class Document, class ParameterList, class CallBack, class UpdateBox, class ReferenceLayer, class Textures>
 Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack* cb, UpdateBox update_box,
-                     ReferenceLayer reference_layer) {
+                     ReferenceLayer reference_layer, Textures textures) {
   auto* m = md.mm();
   using Model = std::remove_pointer_t<decltype(m)>;
   if (!m) throw InvalidInput("there is no current mesh");
@@ -56,10 +116,14 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
   const bool coloured = vertex_coloured || face_coloured;
   const int colour_mask =
       (vertex_coloured ? int(Model::MM_VERTCOLOR) : 0) | (face_coloured ? int(Model::MM_FACECOLOR) : 0);
-  // The layer's texture coordinates are not carried to the quads: the log says so.
+  // The quads take its texture, baked (bake_onto()), where every face has one; else
+  // the log says it is not carried.
+  LayerTexture texture;
   const auto layer_file = [&] {
     MeshFile file = mesh_file_of(m->cm);
     file.texture_coordinates = m->hasDataMask(Model::MM_WEDGTEXCOORD) || m->hasDataMask(Model::MM_VERTTEXCOORD);
+    texture = layer_texture(m, file, textures);
+    file.texture = texture.texture;
     return file;
   };
   Outcome out;
@@ -68,6 +132,7 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
       const QuadMesh q = run_simplification(layer_file(), name, simplify_params_of(params), progress_of(cb), out);
       auto* result = md.addNewMesh("", QString::fromStdString(name + " quads"), true);
       assign_quads(result->cm, q);
+      bake_onto(texture, q, m, result, textures, name, out);
       if (coloured) {
         result->updateDataMask(colour_mask);
         paint(SurfaceColours<Mesh>(m->cm, vertex_coloured, face_coloured), result->cm);
@@ -82,6 +147,8 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
       if (coloured) colours.emplace(m->cm, vertex_coloured, face_coloured);
       assign_quads(m->cm, q);
       if (colours) paint(*colours, m->cm);
+      m->clearDataMask(Model::MM_WEDGTEXCOORD | Model::MM_VERTTEXCOORD);
+      bake_onto(texture, q, m, m, textures, name, out);
       m->clearDataMask(Model::MM_VERTFACETOPO);
       update_box(m);
       mark_polygonal(m);

@@ -31,9 +31,10 @@ const std::vector<FilterSpec>& filter_specs() {
        "vertices to the input</b> then moves the vertices off the input, along "
        "their normals, so that the quads lie closer to it. <br>The result goes to a new layer; the input layer is not changed. "
        "The quads take the input layer's vertex colours, if it has any, interpolated at each vertex's closest "
-       "point on it (as <i>Vertex Attribute Transfer</i> does), and its face colours, each quad the colour of the "
-       "face closest to its centre; texture coordinates and other attributes are not carried over. Quads are "
-       "stored "
+       "point on it (as <i>Vertex Attribute Transfer</i> does), its face colours, each quad the colour of the "
+       "face closest to its centre, and its texture, baked into a texture of the quads' own (a tile for each quad; "
+       "MeshLab 2020.09 writes it beside the input's file, as its own texture filters do); other attributes are "
+       "not carried over. Quads are stored "
        "the MeshLab way, as triangle pairs with a faux shared edge: save as PLY with per-face flags, or as OBJ/OFF "
        "with polygons, to keep them." + kCitation},
       {kConvert, "Convert to Pure Quad Mesh", "meshing_tri_to_pure_quad",
@@ -45,7 +46,8 @@ const std::vector<FilterSpec>& filter_specs() {
        "across which the surface runs on straightest are removed; non-manifold vertices split; caps and "
        "single triangles folded back onto their neighbours mended by flipping an edge; small patches folded "
        "back onto the surface laid flat), and the log lists each repair. "
-       "The layer is replaced by its quads, with its vertex and face colours if it has any."},
+       "The layer is replaced by its quads, with its vertex and face colours and its texture (baked into a "
+       "texture of the quads' own) if it has any."},
       {kFitmaps, "Compute Fitmaps", "compute_scalar_by_fitmap_per_vertex",
        "Computes the <b>S-fitmap</b> (how fast the error of fitting a plane grows with the radius around each "
        "vertex) and the <b>M-fitmap</b> (the largest radius around each vertex where a plane still faces the "

@@ -13,21 +13,31 @@
 #include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/mesh/quad_mesh.h"
 #include "quadsimp/simplify/pipeline.h"
+#include "quadsimp/texture/texture_bake.h"
 #include "quadsimp/util/errors.h"
 #include "quadsimp/util/progress.h"
 
 namespace qs::plugin {
+
+//! Each vertex's number among the live vertices of `m`, -1 for deleted ones.
+template <class CMesh>
+std::vector<int> live_vertex_numbers(const CMesh& m) {
+  std::vector<int> id(m.vert.size(), -1);
+  int n = 0;
+  for (std::size_t i = 0; i < m.vert.size(); ++i)
+    if (!m.vert[i].IsD()) id[i] = n++;
+  return id;
+}
 
 //! The live vertices and faces of a MeshLab mesh, with quads rebuilt from faux pairs.
 //! Vertex i of the result is the i-th live vertex of `m`.
 template <class CMesh>
 MeshFile mesh_file_of(const CMesh& m) {
   std::vector<Vec3> positions;
-  std::vector<int> id(m.vert.size(), -1);
-  for (std::size_t i = 0; i < m.vert.size(); ++i) {
-    if (m.vert[i].IsD()) continue;
-    id[i] = int(positions.size());
-    const auto& p = m.vert[i].cP();
+  const std::vector<int> id = live_vertex_numbers(m);
+  for (const auto& v : m.vert) {
+    if (v.IsD()) continue;
+    const auto& p = v.cP();
     positions.emplace_back(double(p[0]), double(p[1]), double(p[2]));
   }
   std::vector<std::array<Index, 3>> tris;
@@ -74,6 +84,55 @@ void assign_quads(CMesh& m, const QuadMesh& q) {
     t2.ClearAllF();
     t1.SetF(2);  // c2 -> c0
     t2.SetF(0);  // c0 -> c2
+  }
+}
+
+//! The texture of a layer: its live faces' corner coordinates (wedge ones if `wedge`,
+//! else the vertices'), into the layer's textures, named by `images` (one per entry of
+//! m.textures). Vertices numbered as mesh_file_of() numbers them. Empty where a face's
+//! texture number names no texture.
+template <class CMesh>
+FileTexture texture_of(const CMesh& m, bool wedge, std::vector<std::string> images) {
+  const std::vector<int> id = live_vertex_numbers(m);
+  FileTexture t;
+  for (const auto& f : m.face) {
+    if (f.IsD()) continue;
+    std::array<TexCoord, 3> coords;
+    int image = -1;
+    for (int k = 0; k < 3; ++k) {
+      const auto& tc = wedge ? f.cWT(k) : f.cV(k)->cT();
+      coords[k] = {float(tc.U()), float(tc.V())};
+      if (k == 0) image = tc.N();
+      if (tc.N() != image || image < 0 || std::size_t(image) >= images.size()) return {};
+    }
+    t.triangles.push_back({Index(id[f.cV(0) - &m.vert[0]]), Index(id[f.cV(1) - &m.vert[0]]),
+                           Index(id[f.cV(2) - &m.vert[0]])});
+    t.coords.push_back(coords);
+    t.image.push_back(image);
+  }
+  t.images = std::move(images);
+  return t;
+}
+
+//! Gives `quads` (as assign_quads(q) made them) the coordinates of `texture` as wedge
+//! texture coordinates into the layer's texture 0. \pre `quads` has them enabled.
+template <class CMesh>
+void assign_texture(CMesh& quads, const QuadMesh& q, const QuadTexture& texture) {
+  const std::vector<std::uint8_t> split = split_diagonals(q);
+  std::size_t f = 0;
+  for (Index face = 0; face < q.face_capacity(); ++face) {
+    if (!q.is_face_live(face)) continue;
+    const int first = split[face] ? 1 : 0;  // the corner assign_quads() starts both triangles at
+    const auto corner = [&](int k) { return texture.corners[face][std::size_t((first + k) % 4)]; };
+    const int corners[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    for (const auto& tri : corners) {
+      auto& t = quads.face[f++];
+      for (int k = 0; k < 3; ++k) {
+        t.WT(k).U() = corner(tri[k])[0];
+        t.WT(k).V() = corner(tri[k])[1];
+        t.WT(k).N() = 0;
+      }
+    }
   }
 }
 

@@ -3,7 +3,11 @@
 
 #include <exception>
 
+#include <QDir>
+#include <QFileInfo>
+
 #include "apply_filter.h"
+#include "qt_images.h"
 #include "quadsimp/util/errors.h"
 
 using namespace qs::plugin;
@@ -80,9 +84,29 @@ bool QuadsimpFilterPlugin::applyFilter(QAction* a, MeshDocument& md, const RichP
 }
 
 bool QuadsimpFilterPlugin::run(int id, MeshDocument& md, const RichParameterList& params, vcg::CallBackPos* cb) {
+  // MeshLab 2020.09 keeps textures as file names, relative to the layer's file (or to the
+  // working folder) and loads them when it draws. The quads' texture is written beside
+  // the input layer's file, as MeshLab's own texture filters write theirs.
+  const auto folder_of = [](MeshModel* m) { return m->fullName().isEmpty() ? QDir::currentPath() : m->pathName(); };
+  const auto load = [&](MeshModel* m) {
+    std::vector<qs::Image> images;
+    for (const std::string& name : m->cm.textures) {
+      const QString file = QString::fromStdString(name);
+      QImage image(QFileInfo(file).isRelative() ? QDir(folder_of(m)).filePath(file) : file);
+      if (image.isNull()) image.load(QFileInfo(file).absoluteFilePath());
+      images.push_back(image_of(image));
+    }
+    return images;
+  };
+  const auto store = [&](MeshModel* input, MeshModel* quads, const std::string& name, const qs::Image& image) {
+    const QString file = QDir(folder_of(input)).filePath(QString::fromStdString(name));
+    if (!qimage_of(image).save(file, "PNG")) return "cannot write " + file.toStdString();
+    quads->cm.textures = {file.toStdString()};
+    return std::string();
+  };
   const Outcome out = apply_filter(
       id, md, params, cb, [](MeshModel* m) { m->UpdateBoxAndNormals(); },
-      [&] { return params.getMesh("ReferenceMesh"); });
+      [&] { return params.getMesh("ReferenceMesh"); }, texture_store(load, store));
   for (const std::string& line : out.log) Log(GLLogStream::FILTER, line);
   return true;
 }

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "apply_filter.h"
+#include "qt_images.h"
 #include "quadsimp/util/errors.h"
 
 using namespace qs::plugin;
@@ -75,9 +76,20 @@ std::map<std::string, QVariant> QuadsimpFilterPlugin::applyFilter(const QAction*
   // MeshLab 2025 reports failures through MLException (pymeshlab turns it into a
   // Python exception); nothing else may escape.
   try {
+    // MeshLab 2025 keeps textures in memory, by name, with the layer: saving it writes them.
+    const auto load = [](MeshModel* m) {
+      std::vector<qs::Image> images;
+      for (const std::string& name : m->cm.textures) images.push_back(image_of(m->getTexture(name)));
+      return images;
+    };
+    const auto store = [](MeshModel*, MeshModel* quads, const std::string& name, const qs::Image& image) {
+      quads->clearTextures();
+      quads->addTexture(name, qimage_of(image));
+      return std::string();
+    };
     const Outcome out = apply_filter(
         ID(a), md, params, cb, [](MeshModel* m) { m->updateBoxAndNormals(); },
-        [&] { return md.getMesh(params.getMeshId("ReferenceMesh")); });
+        [&] { return md.getMesh(params.getMeshId("ReferenceMesh")); }, texture_store(load, store));
     for (const std::string& line : out.log) log(line);
     postConditionMask = postCondition(a);
     std::map<std::string, QVariant> values;

@@ -12,7 +12,8 @@
 #  - a strip of triangles folded back onto a grid is laid flat, and the log says so;
 #  - the quads come out as polygonal layers that MeshLab's polygon filters accept;
 #  - MeshLab's own quads (its smart triangle pairing) are simplified;
-#  - a coloured layer's quads take its vertex colours, and its face colours.
+#  - a coloured layer's quads take its vertex colours, and its face colours;
+#  - a textured layer's quads take its texture.
 # Usage: meshlabserver_test.sh PLUGIN.so QUADSIMP_CLI REPO_DIR DATASETS_DIR
 set -euo pipefail
 plugin=$1 cli=$2 repo=$3 datasets=$4
@@ -437,6 +438,44 @@ then
   echo "ok: the quads take the layer's face colours"
 else
   fail "the quads did not take the torus's face colours"; cat "$work/server.log"
+fi
+
+# 10. A layer's texture reaches its quads, on the sphere of textured_sphere.py (as PLY:
+#     MeshLab 2020.09 here reads no OBJ). The quads' texture is written beside the input's
+#     file, and the quads saved with their wedge coordinates show it: MeshLab 2025.07's own
+#     texture transfer (pymeshlab) sees on the input's vertices the same colours from them as
+#     from the input, within 3 units of 255 away from the seam and the poles.
+mkdir -p "$work/tex"
+python3 "$here/textured_sphere.py" "$work/tex" ply >/dev/null
+printf '<!DOCTYPE FilterScript>\n<FilterScript>\n%s\n</FilterScript>\n' \
+  "${simplification/value=\"3000\"/value=\"500\"}" >"$work/tex.mlx"
+if server -i "$work/tex/lonlat.ply" -o "$work/tex/quads.ply" -m wt -s "$work/tex.mlx" &&
+   grep -q "texture baked onto the quads: lonlat_quads_texture.png" "$work/server.log" &&
+   [ -f "$work/tex/lonlat_quads_texture.png" ] &&
+   "$repo/.venv/bin/python" - "$work/tex" <<'PY'
+import pathlib, sys
+import numpy as np
+import pymeshlab
+folder = pathlib.Path(sys.argv[1])
+ms = pymeshlab.MeshSet()
+ms.load_new_mesh(str(folder / "lonlat.ply"))
+ms.load_new_mesh(str(folder / "quads.ply"))
+assert ms.current_mesh().has_wedge_tex_coord() and ms.current_mesh().texture_number() == 1
+seen = []
+for source in (0, 1):
+    ms.load_new_mesh(str(folder / "lonlat.ply"))
+    ms.transfer_texture_to_color_per_vertex(sourcemesh=source, targetmesh=ms.current_mesh_id())
+    seen.append(ms.current_mesh().vertex_color_matrix()[:, :3])
+v = ms.current_mesh().vertex_matrix()
+off = np.abs(seen[0] - seen[1]).max(axis=1) * 255
+away = (np.abs(v[:, 2]) < 0.9) & ~((v[:, 0] > 0) & (np.abs(v[:, 1]) < 0.15))
+print(f"{away.sum()} vertices away from the seam and poles: at most {off[away].max():.0f} of 255 off")
+sys.exit(0 if away.mean() > 0.6 and off[away].max() <= 3 else 1)
+PY
+then
+  echo "ok: the quads take the layer's texture"
+else
+  fail "the quads did not take the sphere's texture"; cat "$work/server.log"
 fi
 
 if [ "$failures" -gt 0 ]; then echo "$failures failed"; exit 1; fi

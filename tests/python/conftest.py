@@ -1,6 +1,7 @@
 # quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 import os
 import pathlib
+import sys
 
 import numpy as np
 import pymeshlab
@@ -50,3 +51,11 @@ def open_grid(n=60, bump=0.25):
 def is_pure_quad(mesh):
     polys = mesh.polygonal_face_list()
     return len(polys) > 0 and all(len(p) == 4 for p in polys)
+
+
+
+def textured_sphere(folder):
+    """tests/integration/textured_sphere.py's sphere in `folder`: its OBJ's path."""
+    sys.path.insert(0, str(pathlib.Path(__file__).parents[1] / "integration"))
+    import textured_sphere as sphere
+    return sphere.write(pathlib.Path(folder))

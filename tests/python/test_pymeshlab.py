@@ -11,7 +11,7 @@ import pymeshlab
 import pytest
 
 import quadsimp_pymeshlab
-from conftest import SHARED, is_pure_quad, open_grid
+from conftest import SHARED, is_pure_quad, open_grid, textured_sphere
 
 
 def test_plugin_loads_and_filters_are_methods():
@@ -286,19 +286,61 @@ def test_a_layer_of_one_colour_gives_quads_of_that_colour():
     assert np.abs(out.vertex_color_matrix() - colour).max() < 1 / 255
 
 
-def test_a_textured_layer_is_told_how_to_colour_its_quads(capfd):
-    """Texture coordinates are not carried; the log says so and names MeshLab's transfer, which then colours
-    the quads from the texture (pymeshlab's textured bunny: one texture, per-wedge coordinates)."""
-    sample = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny10k_textured.obj"
+TEXTURED_BUNNY = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny10k_textured.obj"
+
+
+def texture_as_seen_on(ms, source, copies_of):
+    """The colours MeshLab's own texture transfer gives the vertices of a fresh copy of `copies_of` from
+    layer `source`'s texture, and those vertices."""
+    ms.load_new_mesh(str(copies_of))
+    target = ms.current_mesh_id()
+    ms.transfer_texture_to_color_per_vertex(sourcemesh=source, targetmesh=target)
+    return ms.mesh(target).vertex_color_matrix()[:, :3], ms.mesh(target).vertex_matrix()
+
+
+@pytest.mark.parametrize("convert", [False, True])
+def test_a_textured_layer_gives_quads_with_its_texture(tmp_path, capfd, convert):
+    """A layer's texture is baked onto its quads: the quads' layer has wedge coordinates into a texture of its
+    own, which saving the layer writes. On a sphere mapped by longitude and height, with a texture whose red is
+    the longitude and green the height, MeshLab's own texture transfer sees on the input's vertices the same
+    colours from the quads as from the input, to a unit of 255, away from the seam and the poles (where the
+    input's own mapping is skewed). Quads whose tiles were turned a quarter (their split ignored) were 13 off."""
+    sphere = textured_sphere(tmp_path)
     ms = pymeshlab.MeshSet(verbose=True)
-    ms.load_new_mesh(str(sample))
-    assert ms.current_mesh().has_wedge_tex_coord()
-    ms.meshing_quad_mesh_simplification(targetfacenum=600)
-    assert "its texture coordinates are not carried to the quads" in capfd.readouterr().err
-    ms.transfer_texture_to_color_per_vertex(sourcemesh=0, targetmesh=1)
-    # The texture is a test card of a few flat colours (greys, red, green, blue).
-    colours = ms.mesh(1).vertex_color_matrix()
-    assert len(np.unique(np.round(colours[:, :3], 3), axis=0)) >= 4
+    ms.load_new_mesh(str(sphere))
+    assert ms.current_mesh().has_wedge_tex_coord() and ms.current_mesh().texture_number() == 1
+    if convert:
+        ms.load_new_mesh(str(sphere))
+        ms.meshing_tri_to_pure_quad()
+    else:
+        ms.meshing_quad_mesh_simplification(targetfacenum=600)
+    err = capfd.readouterr().err
+    assert "texture baked onto the quads: lonlat" in err and "not carried" not in err
+    quads = ms.current_mesh()
+    assert is_pure_quad(quads) and quads.has_wedge_tex_coord() and quads.texture_number() == 1
+    want, v = texture_as_seen_on(ms, 0, sphere)
+    got, _ = texture_as_seen_on(ms, 1, sphere)
+    off = np.abs(want - got).max(axis=1) * 255
+    away = (np.abs(v[:, 2]) < 0.9) & ~((v[:, 0] > 0) & (np.abs(v[:, 1]) < 0.15))
+    assert away.mean() > 0.6 and off[away].max() <= 3, off[away].max()
+    ms.set_current_mesh(1)
+    ms.save_current_mesh(str(tmp_path / "quads.obj"))
+    assert len(list(tmp_path.glob("lonlat*_quads_texture.png"))) == 1
+
+
+def test_texture_coordinates_without_a_texture_are_not_carried(capfd):
+    """A layer with wedge texture coordinates but no texture (one made from arrays) keeps none on its quads;
+    the log says so and names MeshLab's transfer. (A texture file MeshLab cannot find it replaces with its
+    dummy image, which the quads then take, as MeshLab shows the input.)"""
+    grid = open_grid(20)
+    wedges = np.tile([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]], (grid.face_number(), 1))
+    ms = pymeshlab.MeshSet(verbose=True)
+    ms.add_mesh(pymeshlab.Mesh(grid.vertex_matrix(), grid.face_matrix(), w_tex_coords_matrix=wedges))
+    assert ms.current_mesh().has_wedge_tex_coord() and ms.current_mesh().texture_number() == 0
+    ms.meshing_quad_mesh_simplification(targetfacenum=60)
+    err = capfd.readouterr().err
+    assert "its texture coordinates are not carried to the quads" in err and "Transfer: Texture to Vertex" in err
+    assert not ms.current_mesh().has_wedge_tex_coord()
 
 
 def test_conversion_keeps_the_layers_colours(bunny_path):
@@ -433,7 +475,7 @@ def test_the_clis_textured_obj_shows_the_inputs_texture(cli, tmp_path):
     """The CLI bakes a textured input's texture onto its quads (an atlas of its own, OBJ): MeshLab reads the
     quads with it, and its colours on the input's vertices, through MeshLab's own texture transfer, are those
     of the input's texture (pymeshlab's textured bunny, a test card of flat colours)."""
-    sample = pathlib.Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / "bunny10k_textured.obj"
+    sample = TEXTURED_BUNNY
     out = tmp_path / "q.obj"
     subprocess.run([cli, "simplify", str(sample), str(out), "--faces", "1000", "-q"], check=True,
                    stdout=subprocess.DEVNULL)

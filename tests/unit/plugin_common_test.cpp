@@ -24,6 +24,7 @@
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/mesh/clean.h"
 #include "quadsimp/reference/reference_surface.h"
+#include "quadsimp/texture/texture_bake.h"
 #include "quadsimp/util/errors.h"
 
 using namespace qs;
@@ -34,7 +35,7 @@ namespace {
 
 // A MeshLab layer's mesh: CMeshO's components that the plugin's code touches, with
 // marks, face colours and adjacency optional as in MeshLab (SurfaceColours enables the
-// marks).
+// marks), and wedge and vertex texture coordinates.
 template <class S>
 struct Parts {
   template <class T> class VCoord : public vcg::vertex::Coord<vcg::Point3<S>, T> {};
@@ -51,11 +52,11 @@ template <class S>
 class LayerVertex
     : public vcg::Vertex<LayerTypes<S>, vcg::vertex::InfoOcf, Parts<S>::template VCoord, vcg::vertex::BitFlags,
                          Parts<S>::template VNormal, Parts<S>::template VQuality, vcg::vertex::Color4b,
-                         vcg::vertex::MarkOcf> {};
+                         vcg::vertex::MarkOcf, vcg::vertex::TexCoordfOcf> {};
 template <class S>
 class LayerFace : public vcg::Face<LayerTypes<S>, vcg::face::InfoOcf, vcg::face::VertexRef, vcg::face::BitFlags,
                                    Parts<S>::template FNormal, vcg::face::Color4bOcf, vcg::face::MarkOcf,
-                                   vcg::face::FFAdjOcf> {};
+                                   vcg::face::FFAdjOcf, vcg::face::WedgeTexCoordfOcf> {};
 template <class S>
 class Layer
     : public vcg::tri::TriMesh<vcg::vertex::vector_ocf<LayerVertex<S>>, vcg::face::vector_ocf<LayerFace<S>>> {
@@ -98,6 +99,46 @@ TYPED_TEST(PluginLayer, quads_come_back_from_their_triangle_pairs) {
     EXPECT_TRUE(back.is_pure_quad());
     EXPECT_EQ(quads_of(back.positions, back.quads), quads_of(q));
   }
+}
+
+// A texture's corner coordinates reach each quad's two triangles at the corners they
+// belong to, whichever diagonal assign_quads() split the quad at, and read back the same;
+// a deleted face is skipped, and a texture number naming no texture, or two numbers on one
+// triangle, give none.
+TYPED_TEST(PluginLayer, texture_coordinates_follow_the_quads_corners) {
+  QuadMesh q = quad_grid(4, 3);
+  for (Index v = 0; v < q.n_vertices(); ++v) q.position(v).x() += 0.3 * std::sin(3.0 * v);  // both splits occur
+  const std::vector<std::uint8_t> split = split_diagonals(q);
+  ASSERT_NE(std::count(split.begin(), split.end(), 1), 0);
+  ASSERT_NE(std::count(split.begin(), split.end(), 0), 0);
+  QuadTexture t;
+  t.corners.resize(q.face_capacity());
+  for (Index f = 0; f < q.face_capacity(); ++f)
+    for (int k = 0; k < 4; ++k) t.corners[f][std::size_t(k)] = {float(f), float(k)};
+  Layer<TypeParam> layer;
+  assign_quads(layer, q);
+  layer.face.EnableWedgeTexCoord();
+  assign_texture(layer, q, t);
+  const FileTexture back = texture_of(layer, true, {"atlas"});
+  ASSERT_EQ(back.triangles.size(), 2 * std::size_t(q.n_faces()));
+  EXPECT_EQ(back.images, std::vector<std::string>{"atlas"});
+  for (std::size_t i = 0; i < back.triangles.size(); ++i) {
+    const Index f = Index(i / 2);
+    for (int k = 0; k < 3; ++k) {
+      const TexCoord c = back.coords[i][std::size_t(k)];
+      ASSERT_EQ(c[0], float(f));
+      EXPECT_EQ(q.vertex(f, int(c[1])), back.triangles[i][std::size_t(k)]) << "triangle " << i << " corner " << k;
+    }
+  }
+  vcg::tri::Allocator<Layer<TypeParam>>::DeleteFace(layer, layer.face[0]);
+  EXPECT_EQ(texture_of(layer, true, {"atlas"}).triangles.size(), back.triangles.size() - 1);
+  for (int k = 0; k < 3; ++k) layer.face[3].WT(k).N() = 1;
+  EXPECT_TRUE(texture_of(layer, true, {"atlas"}).empty());
+  const FileTexture two = texture_of(layer, true, {"atlas", "another"});
+  ASSERT_EQ(two.image.size(), back.triangles.size() - 1);
+  EXPECT_EQ(two.image[2], 1);
+  layer.face[3].WT(2).N() = 0;  // one triangle, two textures
+  EXPECT_TRUE(texture_of(layer, true, {"atlas", "another"}).empty());
 }
 
 TYPED_TEST(PluginLayer, deleted_vertices_and_faces_are_left_out) {

@@ -158,3 +158,39 @@ TEST(TextureBake, quads_take_the_sheet_facing_their_way) {
     }
   }
 }
+
+// A quad that is not flat is drawn as two triangles, split at corners 0-2 (OBJ) or 1-3
+// (MeshLab's layers, where split_diagonals() says so): the texture follows the split it is
+// told. The input here is the quad itself, split at 1-3, its texture its own (s, t).
+TEST(TextureBake, texels_follow_the_split_the_quad_is_drawn_with) {
+  QuadMesh quad = single_quad();
+  quad.position(1).z() = 0.6;  // corners 1 and 3 up: the two splits differ by 0.6 in the middle
+  quad.position(3).z() = 0.6;
+  TriMesh input;
+  input.positions = quad.positions();
+  input.faces = {{0, 1, 3}, {1, 2, 3}};
+  const TexCoord st[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  FileTexture tex;
+  tex.images = {"st"};
+  for (const auto& f : input.faces) {
+    tex.triangles.push_back(f);
+    tex.coords.push_back({st[f[0]], st[f[1]], st[f[2]]});
+    tex.image.push_back(0);
+  }
+  const std::vector<Image> image = {gradient(256, 0)};
+  double worst[2] = {0, 0};
+  for (const bool split_13 : {true, false}) {
+    TextureBakeOptions options{18};
+    options.split = {std::uint8_t(split_13)};
+    const QuadTexture t = bake_texture(input.positions, tex, image, quad, options);
+    for (int b = 0; b < 16; ++b)
+      for (int a = 0; a < 16; ++a) {
+        const double s = (a + 0.5) / 16, u = 1 - (b + 0.5) / 16;
+        const std::uint8_t* c = texel(t, in_tile(t, 0, s, u));
+        worst[split_13] = std::max({worst[split_13], std::abs(c[0] - (256 * s - 0.5)),
+                                    std::abs(c[1] - (256 * (1 - u) - 0.5))});
+      }
+  }
+  EXPECT_LT(worst[1], 2);
+  EXPECT_GT(worst[0], 20);
+}

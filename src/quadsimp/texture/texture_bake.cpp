@@ -53,6 +53,8 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
   for (int i : texture.image)
     if (i < 0 || std::size_t(i) >= images.size() || images[std::size_t(i)].empty())
       throw std::invalid_argument("bake_texture: a triangle's image is missing");
+  if (!options.split.empty() && options.split.size() != quads.face_capacity())
+    throw std::invalid_argument("bake_texture: one split per face id expected");
   std::vector<Index> faces;
   for (Index f = 0; f < quads.face_capacity(); ++f)
     if (quads.is_face_live(f)) faces.push_back(f);
@@ -91,12 +93,18 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
                       TexCoord{float((x0 + 1 + inner) / W), float(1 - (y0 + 1) / H)},
                       TexCoord{float((x0 + 1) / W), float(1 - (y0 + 1) / H)}};
     const Vec3 normal = (p[2] - p[0]).cross(p[3] - p[1]);
+    const bool split_13 = !options.split.empty() && options.split[f];
     const double reach = std::max((p[2] - p[0]).norm(), (p[3] - p[1]).norm());
     for (int b = 0; b < inner; ++b)
       for (int a = 0; a < inner; ++a) {
         const double s = (a + 0.5) / inner, t = 1 - (b + 0.5) / inner;
-        const Vec3 at = s >= t ? Vec3(p[0] + s * (p[1] - p[0]) + t * (p[2] - p[1]))
-                               : Vec3(p[0] + t * (p[3] - p[0]) + s * (p[2] - p[3]));
+        Vec3 at;
+        if (split_13)
+          at = s + t <= 1 ? Vec3(p[0] + s * (p[1] - p[0]) + t * (p[3] - p[0]))
+                          : Vec3(p[2] + (1 - s) * (p[3] - p[2]) + (1 - t) * (p[1] - p[2]));
+        else
+          at = s >= t ? Vec3(p[0] + s * (p[1] - p[0]) + t * (p[2] - p[1]))
+                      : Vec3(p[0] + t * (p[3] - p[0]) + s * (p[2] - p[3]));
         SurfacePoint foot = surface.closest(at, reach, normal);
         if (!foot.found()) foot = surface.closest(at);
         const std::size_t k = std::size_t(foot.face);

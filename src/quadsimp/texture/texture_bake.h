@@ -30,13 +30,17 @@ struct TextureBakeOptions {
   //! texel density (as many texels as its images spend on the surface), 6 to 66.
   int tile = 0;
   int max_side = 8192;  //!< the atlas's largest width and height: tiles shrink to fit
+  //! Per face id, nonzero where the quad is drawn as two triangles split at corners 1-3
+  //! (MeshLab's layers: split_diagonals()); none: every quad split at corners 0-2.
+  std::vector<std::uint8_t> split = {};
 };
 
 //! Bakes a file's texture onto quads whose vertices lie on (or near) its surface: each
 //! quad gets its own tile, and each texel the colour of `images` (bilinear, repeating
 //! past [0, 1]) at the point of the file's textured triangles closest to the texel's point
-//! on the quad, among those facing the quad's way. A quad is read as two triangles split
-//! at corners 0-2, as OBJ readers fan it, so the texture follows the drawn surface.
+//! on the quad, among those facing the quad's way. A quad is read as the two triangles it
+//! is drawn as (split at corners 0-2, as OBJ readers fan it, or as options.split says),
+//! so that the texture follows the drawn surface.
 //! A texture's seams need no care: every quad has a tile to itself.
 //! \pre texture.image[t] < images.size() for every triangle, none of those images empty.
 QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& texture,
