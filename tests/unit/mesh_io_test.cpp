@@ -369,6 +369,8 @@ TEST_F(MeshIo, textures_round_trip_through_obj) {
     EXPECT_EQ(f.texture.coords[2 * i + 1], (std::array<TexCoord, 3>{c[0], c[2], c[3]})) << i;
   }
   const Image back = read_image(texture_path_of(p));
+  EXPECT_THROW(read_image(path("none.png")), InvalidInput);
+  EXPECT_THROW(read_image(write("text.png", "not an image")), InvalidInput);
   EXPECT_EQ(back.width, 3);
   EXPECT_EQ(back.height, 2);
   EXPECT_EQ(back.rgba, t.image.rgba);

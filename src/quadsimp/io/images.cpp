@@ -2,7 +2,9 @@
 #include "quadsimp/io/images.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <memory>
+#include <system_error>
 
 #include "quadsimp/util/errors.h"
 
@@ -18,6 +20,8 @@
 namespace qs {
 
 Image read_image(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) fail_file(path, "no such image file");
   int w = 0, h = 0, channels = 0;
   const std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(path.c_str(), &w, &h, &channels, 4), stbi_image_free);
   if (!data) fail_file(path, std::string("cannot be read as an image (") + stbi_failure_reason() + ")");
