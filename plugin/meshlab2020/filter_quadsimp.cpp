@@ -29,7 +29,10 @@ MeshFilterInterface::FilterClass QuadsimpFilterPlugin::getClass(QAction* a) {
   switch (ID(a)) {
     case kFitmaps: return FilterClass(Quality | VertexColoring);
     case kQuality: return Measure;
-    default: return FilterClass(Remeshing | Polygonal);
+    // Texture: the GUI loads a layer's texture files after a filter of that class only, and
+    // the quads' texture is a file the filter writes (which also lists the filter under
+    // Filters > Texture).
+    default: return FilterClass(Remeshing | Polygonal | Texture);
   }
 }
 
