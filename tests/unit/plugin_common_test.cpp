@@ -139,6 +139,18 @@ TYPED_TEST(PluginLayer, texture_coordinates_follow_the_quads_corners) {
   EXPECT_EQ(two.image[2], 1);
   layer.face[3].WT(2).N() = 0;  // one triangle, two textures
   EXPECT_TRUE(texture_of(layer, true, {"atlas", "another"}).empty());
+  // Per-vertex coordinates: each corner its vertex's.
+  layer.vert.EnableTexCoord();
+  for (std::size_t v = 0; v < layer.vert.size(); ++v) {
+    layer.vert[v].T().U() = float(v);
+    layer.vert[v].T().V() = 0.5f;
+    layer.vert[v].T().N() = 0;
+  }
+  const FileTexture per_vertex = texture_of(layer, false, {"atlas"});
+  ASSERT_EQ(per_vertex.triangles.size(), back.triangles.size() - 1);
+  for (std::size_t i = 0; i < per_vertex.triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(per_vertex.coords[i][std::size_t(k)], (TexCoord{float(per_vertex.triangles[i][std::size_t(k)]), 0.5f}));
 }
 
 TYPED_TEST(PluginLayer, deleted_vertices_and_faces_are_left_out) {
