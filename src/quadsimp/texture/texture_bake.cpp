@@ -68,7 +68,7 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
   const int rows = int((n + std::size_t(columns) - 1) / std::size_t(columns));
   int tile = options.tile;
   if (tile <= 0) tile = 2 + int(std::lround(std::sqrt(texels_on_surface(texture, images) / double(n))));
-  tile = std::clamp(tile, 6, 66);
+  tile = std::clamp(tile, 6, 256);
   tile = std::max(3, std::min(tile, options.max_side / std::max(columns, rows)));
   const int inner = tile - 2;
   Image& im = out.image;

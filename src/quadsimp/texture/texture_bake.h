@@ -27,9 +27,11 @@ struct QuadTexture {
 
 struct TextureBakeOptions {
   //! Texels along a tile's side, a one-texel border round it included; 0: the input's
-  //! texel density (as many texels as its images spend on the surface), 6 to 66.
+  //! texel density (as many texels as its images spend on the surface), 6 to 256.
   int tile = 0;
-  int max_side = 8192;  //!< the atlas's largest width and height: tiles shrink to fit
+  //! The atlas's largest width and height: tiles shrink to fit. 4,096: 64 MB in memory,
+  //! which graphics cards and MeshLab's default texture memory take whole.
+  int max_side = 4096;
   //! Per face id, nonzero where the quad is drawn as two triangles split at corners 1-3
   //! (MeshLab's layers: split_diagonals()); none: every quad split at corners 0-2.
   std::vector<std::uint8_t> split = {};
