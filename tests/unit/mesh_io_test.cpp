@@ -313,9 +313,12 @@ TEST_F(MeshIo, ply_textures_are_read_with_their_images) {
            "property float z\n" + vertex + "element face 2\nproperty list uchar int vertex_indices\n" + face +
            "end_header\n";
   };
-  const std::string two = "comment TextureFile wall.png\ncomment made by hand\ncomment TextureFile maps/my floor.png\n";
-  const MeshFile f = read_mesh(write("c.ply", header(two, "", "property list uchar float texcoord\nproperty int texnumber\n") +
-                                                  square + "4 0 1 2 3 8 0 0 1 0 1 1 0 1 0\n3 1 4 2 6 1 0 0.5 0.25 1 1 1\n"));
+  const std::string two =
+      "comment TextureFile wall.png\ncomment made by hand\ncomment TextureFile maps/my floor.png\n";
+  const std::string corners = "property list uchar float texcoord\nproperty int texnumber\n";
+  const std::string quad = "4 0 1 2 3 8 0 0 1 0 1 1 0 1 ";  // its texnumber follows
+  const MeshFile f =
+      read_mesh(write("c.ply", header(two, "", corners) + square + quad + "0\n3 1 4 2 6 1 0 0.5 0.25 1 1 1\n"));
   EXPECT_TRUE(f.texture_coordinates);
   EXPECT_EQ(f.texture.triangles, (std::vector<std::array<Index, 3>>{{0, 1, 2}, {0, 2, 3}, {1, 4, 2}}));
   EXPECT_EQ(f.texture.coords[1], (std::array<TexCoord, 3>{TexCoord{0, 0}, TexCoord{1, 1}, TexCoord{0, 1}}));
@@ -331,11 +334,11 @@ TEST_F(MeshIo, ply_textures_are_read_with_their_images) {
   EXPECT_EQ(v.texture.image, (std::vector<int>(3, 0)));
   // No texture, the mesh read all the same: no image named, a texnumber past them, a face
   // without its coordinates.
-  const std::string corners = "property list uchar float texcoord\nproperty int texnumber\n";
+  const std::string triangle = "3 1 4 2 6 1 0 0.5 0.25 1 1 0\n";
   for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
-           {"none.ply", header("", "", corners) + square + "4 0 1 2 3 8 0 0 1 0 1 1 0 1 0\n3 1 4 2 6 1 0 0.5 0.25 1 1 0\n"},
-           {"past.ply", header(two, "", corners) + square + "4 0 1 2 3 8 0 0 1 0 1 1 0 1 2\n3 1 4 2 6 1 0 0.5 0.25 1 1 0\n"},
-           {"short.ply", header(two, "", corners) + square + "4 0 1 2 3 8 0 0 1 0 1 1 0 1 0\n3 1 4 2 4 1 0 0.5 0.25 0\n"}}) {
+           {"none.ply", header("", "", corners) + square + quad + "0\n" + triangle},
+           {"past.ply", header(two, "", corners) + square + quad + "2\n" + triangle},
+           {"short.ply", header(two, "", corners) + square + quad + "0\n3 1 4 2 4 1 0 0.5 0.25 0\n"}}) {
     SCOPED_TRACE(name);
     const MeshFile g = read_mesh(write(name, text));
     EXPECT_TRUE(g.texture.empty());

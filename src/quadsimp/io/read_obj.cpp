@@ -157,7 +157,8 @@ MeshFile read_obj(const std::string& path) {
       textured = true;
       // Coordinates that are not numbers leave the texture out, not the mesh.
       double u = 0, v = 0;
-      texture_whole = texture_whole && in.size() > 1 && parse_number(in[1], u) && (in.size() < 3 || parse_number(in[2], v));
+      texture_whole =
+          texture_whole && in.size() > 1 && parse_number(in[1], u) && (in.size() < 3 || parse_number(in[2], v));
       coords.push_back({float(u), float(v)});
     } else if (kw == "mtllib") {
       // Material files are named relative to the OBJ's folder, several to a line, or one

@@ -133,8 +133,8 @@ void write_obj(const std::string& path, const QuadMesh& q, const QuadColours& co
   std::size_t corner = 0;
   for (Index f = 0; f < q.face_capacity(); ++f) {
     if (!q.is_face_live(f)) continue;
-    if (const int m = materials.empty() ? -1 : colours.faces.empty() ? 0 : materials.at(colours.faces[f]); m != material)
-      out << "usemtl material_" << (material = m) << '\n';
+    const int m = materials.empty() ? -1 : colours.faces.empty() ? 0 : materials.at(colours.faces[f]);
+    if (m != material) out << "usemtl material_" << (material = m) << '\n';
     out << 'f';
     for (Index k = 0; k < 4; ++k) {
       out << ' ' << id[q.vertex(f, k)] + 1;  // OBJ counts from 1

@@ -113,6 +113,7 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
         SurfacePoint foot = surface.closest(at, std::min(reach, last + 2 * step), normal);
         if (!foot.found()) foot = surface.closest(at, reach, normal);
         if (!foot.found()) foot = surface.closest(at);
+        if (!foot.found()) continue;  // every triangle without area: the texel stays black
         last = foot.distance;
         const std::size_t k = std::size_t(foot.face);
         const auto& c = texture.coords[k];
@@ -120,7 +121,8 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
         const TexCoord uv{float(w0 * c[0][0] + foot.u * c[1][0] + foot.v * c[2][0]),
                           float(w0 * c[0][1] + foot.u * c[1][1] + foot.v * c[2][1])};
         const auto colour = sample(images[std::size_t(texture.image[k])], uv);
-        std::uint8_t* texel = &im.rgba[4 * (std::size_t(y0 + 1 + b) * std::size_t(im.width) + std::size_t(x0 + 1 + a))];
+        const std::size_t at_texel = std::size_t(y0 + 1 + b) * std::size_t(im.width) + std::size_t(x0 + 1 + a);
+        std::uint8_t* texel = &im.rgba[4 * at_texel];
         for (int j = 0; j < 4; ++j) texel[j] = colour_byte(colour[j]);
       }
     // The border: each texel a copy of the nearest inner one.

@@ -46,6 +46,7 @@ struct TextureBakeOptions {
 //! A texture's seams need no care: every quad has a tile to itself.
 //! \pre texture.image[t] < images.size() for every triangle, none of those images empty.
 QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& texture,
-                         const std::vector<Image>& images, const QuadMesh& quads, const TextureBakeOptions& options = {});
+                         const std::vector<Image>& images, const QuadMesh& quads,
+                         const TextureBakeOptions& options = {});
 
 }  // namespace qs
