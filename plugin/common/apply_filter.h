@@ -51,7 +51,8 @@ struct LayerTexture {
 //! How a MeshLab generation keeps textures, which the two do not share: `load(model*)` gives
 //! a layer's images, one per entry of its cm.textures (an empty Image where one cannot be
 //! had); `store(input model*, quads model*, name, image)` gives the quads' layer its one
-//! texture, and says why not if it cannot ("" when it has).
+//! texture, under `name` or (changing it) another, and says why not if it cannot ("" when
+//! it has).
 template <class Load, class Store>
 struct TextureStore {
   Load load;
@@ -86,7 +87,7 @@ void bake_onto(const LayerTexture& t, const QuadMesh& q, Model* input, Model* re
   TextureBakeOptions options;
   options.split = split_diagonals(q);
   const QuadTexture baked = bake_texture(t.positions, t.texture, t.images, q, options);
-  const std::string file = std::filesystem::path(name).stem().string() + "_quads_texture.png";
+  std::string file = std::filesystem::path(name).stem().string() + "_quads_texture.png";
   if (const std::string why = textures.store(input, result, file, baked.image); !why.empty()) {
     out.log.push_back("the texture is not carried to the quads: " + why);
     return;

@@ -101,8 +101,12 @@ bool QuadsimpFilterPlugin::run(int id, MeshDocument& md, const RichParameterList
     }
     return images;
   };
-  const auto store = [&](MeshModel* input, MeshModel* quads, const std::string& name, const qs::Image& image) {
-    const QString file = QDir(folder_of(input)).filePath(QString::fromStdString(name));
+  const auto store = [&](MeshModel* input, MeshModel* quads, std::string& name, const qs::Image& image) {
+    const QDir folder(folder_of(input));
+    const QString stem = QFileInfo(QString::fromStdString(name)).completeBaseName();
+    QString file = folder.filePath(QString::fromStdString(name));
+    for (int k = 2; QFileInfo::exists(file); ++k) file = folder.filePath(stem + "_" + QString::number(k) + ".png");
+    name = QFileInfo(file).fileName().toStdString();
     if (!qimage_of(image).save(file, "PNG")) return "cannot write " + file.toStdString();
     quads->cm.textures = {file.toStdString()};
     return std::string();

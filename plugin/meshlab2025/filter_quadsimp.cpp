@@ -82,7 +82,7 @@ std::map<std::string, QVariant> QuadsimpFilterPlugin::applyFilter(const QAction*
       for (const std::string& name : m->cm.textures) images.push_back(image_of(m->getTexture(name)));
       return images;
     };
-    const auto store = [](MeshModel*, MeshModel* quads, const std::string& name, const qs::Image& image) {
+    const auto store = [](MeshModel*, MeshModel* quads, std::string& name, const qs::Image& image) {
       quads->clearTextures();
       quads->addTexture(name, qimage_of(image));
       return std::string();

@@ -477,6 +477,15 @@ then
 else
   fail "the quads did not take the sphere's texture"; cat "$work/server.log"
 fi
+# Run again, the first result's texture is kept: the second goes to a name of its own.
+if server -i "$work/tex/lonlat.ply" -o "$work/tex/again.ply" -m wt -s "$work/tex.mlx" &&
+   grep -q "texture baked onto the quads: lonlat_quads_texture_2.png" "$work/server.log" &&
+   [ -f "$work/tex/lonlat_quads_texture_2.png" ] && grep -q "lonlat_quads_texture_2.png" "$work/tex/again.ply" &&
+   grep -q "lonlat_quads_texture.png" "$work/tex/quads.ply"; then
+  echo "ok: a second result's texture does not replace the first's"
+else
+  fail "a second result's texture replaced the first's"; cat "$work/server.log"
+fi
 
 if [ "$failures" -gt 0 ]; then echo "$failures failed"; exit 1; fi
 echo "meshlabserver tests passed"
