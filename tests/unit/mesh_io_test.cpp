@@ -373,6 +373,7 @@ TEST_F(MeshIo, textures_round_trip_through_obj) {
   }
   const Image back = read_image(texture_path_of(p));
   EXPECT_THROW(read_image(path("none.png")), InvalidInput);
+  EXPECT_THROW(write_png(dir_.string(), t.image), InvalidInput);  // a folder
   EXPECT_THROW(read_image(write("text.png", "not an image")), InvalidInput);
   EXPECT_EQ(back.width, 3);
   EXPECT_EQ(back.height, 2);

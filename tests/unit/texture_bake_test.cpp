@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "fixtures/shapes.h"
 
@@ -124,6 +125,22 @@ TEST(TextureBake, tiles_have_a_border_of_their_own_texels) {
     }
   // No tile wider than the largest side allows.
   EXPECT_EQ(bake_texture(plane.positions, tex, {gradient(64, 9)}, quads, {8, 10}).image.width, 10);
+  // Refused: an image missing or empty, a split for the wrong number of faces.
+  EXPECT_THROW(bake_texture(plane.positions, tex, {}, quads), std::invalid_argument);
+  EXPECT_THROW(bake_texture(plane.positions, tex, {Image{}}, quads), std::invalid_argument);
+  TextureBakeOptions wrong;
+  wrong.split = {0, 1};
+  EXPECT_THROW(bake_texture(plane.positions, tex, {gradient(64, 9)}, quads, wrong), std::invalid_argument);
+  // Triangles without area under the quads only: a texture all the same, no reading past them.
+  FileTexture flat;
+  flat.images = {"a"};
+  flat.triangles = {{0, 1, 2}};  // three points of the grid's first row: collinear
+  flat.coords = {{TexCoord{0, 0}, TexCoord{1, 0}, TexCoord{1, 1}}};
+  flat.image = {0};
+  EXPECT_EQ(bake_texture(plane.positions, flat, {gradient(64, 9)}, quads, {8}).image.width, 16);
+  // Nothing to bake: no texture, or no quad.
+  EXPECT_TRUE(bake_texture(plane.positions, FileTexture{}, {}, quads).empty());
+  EXPECT_TRUE(bake_texture(plane.positions, tex, {gradient(64, 9)}, QuadMesh()).empty());
 }
 
 // A quad halfway between the two sheets of a thin plate takes the texture of the sheet that
