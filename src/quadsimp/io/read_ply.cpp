@@ -231,6 +231,8 @@ Header read_header(const std::string& path, const std::string& file) {
   return h;
 }
 
+constexpr std::size_t kNoUvs = ~std::size_t(0);  // a polygon without coordinates of its own
+
 // The polygons' texture, each fanned as the mesh is: from their corners' coordinates
 // (from `first_uv`, kNoUvs: none) or their vertices' (`vertex_uvs`, one per vertex or
 // none), into the images the header names (beside the file). Empty unless every polygon
@@ -245,7 +247,7 @@ FileTexture texture_of_polygons(const std::string& path, const std::vector<std::
     const std::size_t from = polygon_start[i], n = polygon_start[i + 1] - from;
     if (image[i] < 0 || std::size_t(image[i]) >= images.size()) return {};
     const auto coord = [&](std::size_t k) -> const TexCoord* {
-      if (first_uv[i] != ~std::size_t(0)) return &corner_uvs[first_uv[i] + k];
+      if (first_uv[i] != kNoUvs) return &corner_uvs[first_uv[i] + k];
       const Index v = corners[from + k];
       return v < vertex_uvs.size() ? &vertex_uvs[v] : nullptr;
     };
@@ -284,7 +286,6 @@ MeshFile read_ply(const std::string& path) {
   std::vector<TexCoord> vertex_uvs, corner_uvs;
   std::vector<std::size_t> polygon_uvs;  // per polygon: its first in corner_uvs, or kNoUvs
   std::vector<int> polygon_image;
-  constexpr std::size_t kNoUvs = ~std::size_t(0);
   // Faces, flat, checked and fanned once all vertices are known (they may come first).
   std::vector<Index> corners;
   std::vector<std::size_t> polygon_start{0};
