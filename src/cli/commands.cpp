@@ -65,7 +65,7 @@ void print_quality(const QuadQuality& q, const SurfaceDistance* d) {
 
 // The input's texture baked onto the quads, where the output keeps one (OBJ). An image
 // that cannot be read leaves the texture out, and says so.
-QuadTexture texture_for(const std::string& output, const Input& in, const LogFn& log) {
+QuadTexture texture_for(const std::string& output, const Input& in, int size, const LogFn& log) {
   if (in.source.texture.empty()) return {};
   if (extension_of(output) != "obj") {
     if (log)
@@ -74,7 +74,9 @@ QuadTexture texture_for(const std::string& output, const Input& in, const LogFn&
     return {};
   }
   try {
-    return texture_of_quads(in.source, in.quads);
+    TextureBakeOptions options;
+    options.max_side = size;
+    return texture_of_quads(in.source, in.quads, options);
   } catch (const InvalidInput& e) {
     if (log) log(std::string(e.what()) + ": the quads are written without a texture");
     return {};
@@ -110,7 +112,8 @@ int run_convert(const ConvertArgs& a) {
     const auto t0 = std::chrono::steady_clock::now();
     const LogFn log = stderr_log(a.quiet);
     Input in = load_input(a.input, {}, log);
-    write_quad_mesh(a.output, in.quads, colours_of_quads(in.source, in.quads), texture_for(a.output, in, log));
+    write_quad_mesh(a.output, in.quads, colours_of_quads(in.source, in.quads),
+                    texture_for(a.output, in, a.texture_size, log));
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (in.was_pure_quad) {
       std::printf("%s: already pure quad, %u quads written to %s (%.2f s)\n", a.input.c_str(),
@@ -145,7 +148,8 @@ int run_simplify(const SimplifyArgs& a) {
     Input in = load_input(a.input, {}, log);
     const ReferenceSurface ref(std::move(in.reference));
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
-    write_quad_mesh(a.output, in.quads, colours_of_quads(in.source, in.quads), texture_for(a.output, in, log));
+    write_quad_mesh(a.output, in.quads, colours_of_quads(in.source, in.quads),
+                    texture_for(a.output, in, a.texture_size, log));
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads, &ref);
     if (log)

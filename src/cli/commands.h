@@ -4,6 +4,7 @@
 #include <string>
 
 #include "quadsimp/simplify/pipeline.h"
+#include "quadsimp/texture/texture_bake.h"
 
 namespace qs::cli {
 
@@ -12,6 +13,7 @@ enum Exit : int { kOk = 0, kBadInput = 1, kBadArguments = 2 };
 
 struct ConvertArgs {
   std::string input, output;
+  int texture_size = TextureBakeOptions().max_side;  // the quads' texture's largest side
   bool quiet = false;
 };
 int run_convert(const ConvertArgs& args);
@@ -19,6 +21,7 @@ int run_convert(const ConvertArgs& args);
 struct SimplifyArgs {
   std::string input, output;
   SimplifyParams params;  // the options bind to its fields, so the defaults are the pipeline's
+  int texture_size = TextureBakeOptions().max_side;  // the quads' texture's largest side
   bool stats = false, json = false, quiet = false;
   unsigned samples = 1000000;
 };

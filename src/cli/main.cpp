@@ -26,6 +26,13 @@ CLI::Validator whole_number_from_one() {
   return CLI::Validator([](std::string& s) { return not_a_whole_number_from_one(s); }, "N>=1");
 }
 
+void add_texture_size(CLI::App* command, int& size) {
+  command->add_option("--texture-size", size,
+                      "the largest width and height of the quads' texture, baked from the input's (OBJ output)")
+      ->capture_default_str()
+      ->check(CLI::Range(16, 16384));
+}
+
 CLI::Validator face_count_or_auto() {
   return CLI::Validator(
       [](std::string& s) -> std::string {
@@ -72,6 +79,7 @@ int main(int argc, char** argv) {
   auto* c = app.add_subcommand("convert", "Convert a triangle mesh (PLY, OBJ, OFF, STL) into a pure quad mesh");
   c->add_option("IN", convert.input, "input mesh")->required()->check(CLI::ExistingFile);
   c->add_option("OUT", convert.output, "output quad mesh (.ply, .obj or .off)")->required();
+  add_texture_size(c, convert.texture_size);
   c->add_flag("-q,--quiet", convert.quiet, "no notes on stderr");
 
   SimplifyArgs simp;
@@ -131,6 +139,7 @@ int main(int argc, char** argv) {
               "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");
   s->add_flag("--fit-to-input", simp.params.fit_to_input,
               "afterwards, move the vertices along their normals, off the input, to lower the distance both ways (ours)");
+  add_texture_size(s, simp.texture_size);
   s->add_flag("--stats", simp.stats, "print quality and distance metrics of the result");
   s->add_flag("--json", simp.json, "print the result's metrics (and the time) as one JSON object");
   s->add_option("--samples", simp.samples, "distance samples per surface for --stats")

@@ -318,6 +318,12 @@ TEST_F(Cli, a_texture_reaches_obj_quads) {
     }
     EXPECT_GT(checked, f.quads.size() / 2);  // the others lie at a pole or the seam
   }
+  // --texture-size bounds the atlas (and is refused out of its range).
+  ASSERT_EQ(run("simplify " + in + " " + p("small.obj") + " --faces 150 --texture-size 64 -q").code, 0);
+  const Image small = read_image(texture_path_of(p("small.obj")));
+  EXPECT_LE(std::max(small.width, small.height), 64);
+  EXPECT_GE(std::max(small.width, small.height), 13 * 3);  // 13 tiles a row, of 3 texels at least
+  EXPECT_EQ(run("convert " + in + " " + p("c2.obj") + " --texture-size 8").code, 2);
   const CliRun r = run("simplify " + in + " " + p("plain.ply") + " --faces 150");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("the input's texture is written with .obj output only"), std::string::npos) << r.out;
