@@ -63,14 +63,12 @@ void print_quality(const QuadQuality& q, const SurfaceDistance* d) {
                 100 * d->projectability);
 }
 
-// The input's texture baked onto the quads, where the output keeps one (OBJ). An image
-// that cannot be read leaves the texture out, and says so.
+// The input's texture baked onto the quads, where the output keeps one (OBJ, PLY). An
+// image that cannot be read leaves the texture out, and says so.
 QuadTexture texture_for(const std::string& output, const Input& in, int size, const LogFn& log) {
   if (in.source.texture.empty()) return {};
-  if (extension_of(output) != "obj") {
-    if (log)
-      log(output + ": the input's texture is written with .obj output only (MeshLab reads no texture on a PLY's "
-                   "or OFF's quads)");
+  if (extension_of(output) == "off") {
+    if (log) log(output + ": OFF keeps no texture; the input's is written with .obj or .ply output");
     return {};
   }
   try {

@@ -28,7 +28,7 @@ CLI::Validator whole_number_from_one() {
 
 void add_texture_size(CLI::App* command, int& size) {
   command->add_option("--texture-size", size,
-                      "the largest width and height of the quads' texture, baked from the input's (OBJ output)")
+                      "the largest width and height of the quads' texture, baked from the input's (OBJ, PLY output)")
       ->capture_default_str()
       ->check(CLI::Range(16, 16384));
 }

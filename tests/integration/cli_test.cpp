@@ -227,12 +227,12 @@ TEST_F(Cli, face_colours_reach_the_quads) {
   EXPECT_TRUE(fs::exists(p("a.obj.mtl")));
 }
 
-// A texture (an OBJ's or a PLY's) reaches OBJ quads as one of their own: a tile per quad,
-// each texel the input's texture under it. On a sphere mapped by longitude and height (a seam where the longitude
+// A texture (an OBJ's or a PLY's) reaches OBJ and PLY quads as one of their own: a tile
+// per quad, each texel the input's texture under it. On a sphere mapped by longitude and height (a seam where the longitude
 // wraps), with an image whose red is the longitude and green the height, the texel at
-// each quad's middle has the colour of the point of the sphere under it. Other formats
-// take no texture, and say so.
-TEST_F(Cli, a_texture_reaches_obj_quads) {
+// each quad's middle has the colour of the point of the sphere under it. OFF takes no
+// texture, and says so.
+TEST_F(Cli, a_texture_reaches_obj_and_ply_quads) {
   const TriMesh sphere = fixtures::tri_sphere(24, 32);
   const auto lon_lat = [](const Vec3& p) {
     const Vec3 d = p.normalized();
@@ -289,15 +289,16 @@ TEST_F(Cli, a_texture_reaches_obj_quads) {
       {"simplify " + in + " " + p("u.obj") + " --faces 150", p("u.obj")},
       {"simplify " + in + " " + p("a.obj") + " --adaptive --auto-halt", p("a.obj")},
       {"convert " + in + " " + p("c.obj"), p("c.obj")},
-      {"simplify " + in_ply + " " + p("p.obj") + " --faces 150", p("p.obj")}};
-  for (const auto& [command, obj_out] : runs) {
+      {"simplify " + in_ply + " " + p("p.obj") + " --faces 150", p("p.obj")},
+      {"simplify " + in + " " + p("q.ply") + " --faces 150", p("q.ply")}};
+  for (const auto& [command, output] : runs) {
     SCOPED_TRACE(command);
     const CliRun r = run(command);
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_EQ(r.out.find("not carried"), std::string::npos) << r.out;
-    const MeshFile f = read_mesh(obj_out);
+    const MeshFile f = read_mesh(output);
     ASSERT_EQ(f.texture.triangles.size(), 2 * f.quads.size());
-    ASSERT_EQ(f.texture.images, std::vector<std::string>{texture_path_of(obj_out)});
+    ASSERT_EQ(f.texture.images, std::vector<std::string>{texture_path_of(output)});
     const Image baked = read_image(f.texture.images[0]);
     std::size_t checked = 0;
     for (std::size_t i = 0; i < f.quads.size(); ++i) {
@@ -324,9 +325,10 @@ TEST_F(Cli, a_texture_reaches_obj_quads) {
   EXPECT_LE(std::max(small.width, small.height), 64);
   EXPECT_GE(std::max(small.width, small.height), 13 * 3);  // 13 tiles a row, of 3 texels at least
   EXPECT_EQ(run("convert " + in + " " + p("c2.obj") + " --texture-size 8").code, 2);
-  const CliRun r = run("simplify " + in + " " + p("plain.ply") + " --faces 150");
+  const CliRun r = run("simplify " + in + " " + p("plain.off") + " --faces 150");
   ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("the input's texture is written with .obj output only"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("OFF keeps no texture; the input's is written with .obj or .ply output"), std::string::npos)
+      << r.out;
   EXPECT_FALSE(fs::exists(p("plain_texture.png")));
 }
 

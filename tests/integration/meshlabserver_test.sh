@@ -477,6 +477,17 @@ then
 else
   fail "the quads did not take the sphere's texture"; cat "$work/server.log"
 fi
+# MeshLab reads the CLI's textured PLY (quads as triangle pairs with a faux diagonal, as it
+# writes them) with its texture: saved again, the texture file and coordinates are there.
+if "$cli" simplify "$work/tex/lonlat.ply" "$work/tex/cli.ply" --faces 500 -q >/dev/null &&
+   server -i "$work/tex/cli.ply" -o "$work/tex/cli_again.ply" -m wt ff &&
+   head -c 2000 "$work/tex/cli_again.ply" | grep -a -q "TextureFile cli_texture.png" &&
+   head -c 2000 "$work/tex/cli_again.ply" | grep -a -q "property list uchar float texcoord" &&
+   head -c 2000 "$work/tex/cli_again.ply" | grep -a -q "element face 1000"; then
+  echo "ok: MeshLab reads the CLI's textured PLY with its texture"
+else
+  fail "MeshLab did not read the CLI's textured PLY with its texture"; cat "$work/server.log"
+fi
 # Run again, the first result's texture is kept: the second goes to a name of its own.
 if server -i "$work/tex/lonlat.ply" -o "$work/tex/again.ply" -m wt -s "$work/tex.mlx" &&
    grep -q "texture baked onto the quads: lonlat_quads_texture_2.png" "$work/server.log" &&

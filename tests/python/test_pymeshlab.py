@@ -471,12 +471,14 @@ def test_the_clis_files_load_with_their_quads_and_colours(bunny_path, cli, tmp_p
         assert out.has_vertex_color() and np.ptp(out.vertex_color_matrix()[:, 0]) > 0.5, name
 
 
-def test_the_clis_textured_obj_shows_the_inputs_texture(cli, tmp_path):
-    """The CLI bakes a textured input's texture onto its quads (an atlas of its own, OBJ): MeshLab reads the
-    quads with it, and its colours on the input's vertices, through MeshLab's own texture transfer, are those
-    of the input's texture (pymeshlab's textured bunny, a test card of flat colours)."""
+@pytest.mark.parametrize("ext", ["obj", "ply"])
+def test_the_clis_textured_quads_show_the_inputs_texture(cli, tmp_path, ext):
+    """The CLI bakes a textured input's texture onto its quads (an atlas of its own; OBJ, or PLY as MeshLab
+    writes textured quads): MeshLab reads the quads with it, and its colours on the input's vertices, through
+    MeshLab's own texture transfer, are those of the input's texture (pymeshlab's textured bunny, a test card
+    of flat colours)."""
     sample = TEXTURED_BUNNY
-    out = tmp_path / "q.obj"
+    out = tmp_path / ("q." + ext)
     subprocess.run([cli, "simplify", str(sample), str(out), "--faces", "1000", "-q"], check=True,
                    stdout=subprocess.DEVNULL)
     assert (tmp_path / "q_texture.png").is_file()

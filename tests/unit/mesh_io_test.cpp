@@ -347,10 +347,11 @@ TEST_F(MeshIo, ply_textures_are_read_with_their_images) {
   }
 }
 
-// A texture written with the quads (OBJ: coordinates four to a face, its image named by
-// the material file) reads back as it was; other formats take none, and a refused OBJ
-// leaves no image or material file behind.
-TEST_F(MeshIo, textures_round_trip_through_obj) {
+// A texture written with the quads reads back as it was: OBJ's coordinates four to a face,
+// its image named by the material file; PLY's quads as triangle pairs (split at corners
+// 0-2) with a faux diagonal and their corners' coordinates, the image named by a comment.
+// OFF takes none, and a refused file leaves no image or material file behind.
+TEST_F(MeshIo, textures_round_trip_through_obj_and_ply) {
   const QuadMesh m = grid_with_a_tombstone();
   QuadTexture t;
   t.image.width = 3, t.image.height = 2;
@@ -358,27 +359,32 @@ TEST_F(MeshIo, textures_round_trip_through_obj) {
   t.corners.resize(m.face_capacity());
   for (Index f = 0; f < m.face_capacity(); ++f)
     for (int k = 0; k < 4; ++k) t.corners[f][std::size_t(k)] = {float(f) / 7, 1.f / float(k + 3)};
-  const std::string p = path("textured quads.obj");
-  write_quad_mesh(p, m, {}, t);
-  EXPECT_EQ(texture_path_of(p), path("textured quads_texture.png"));
-  const MeshFile f = read_mesh(p);
-  ASSERT_EQ(f.quads.size(), m.n_faces());
-  ASSERT_EQ(f.texture.triangles.size(), 2 * f.quads.size());
-  ASSERT_EQ(f.texture.images.size(), 1u);
-  EXPECT_EQ(f.texture.images[0], texture_path_of(p));
-  for (std::size_t i = 0; i < f.quads.size(); ++i) {
-    const auto& c = t.corners[i + 1];  // face 0 is the tombstone
-    EXPECT_EQ(f.texture.coords[2 * i], (std::array<TexCoord, 3>{c[0], c[1], c[2]})) << i;
-    EXPECT_EQ(f.texture.coords[2 * i + 1], (std::array<TexCoord, 3>{c[0], c[2], c[3]})) << i;
+  for (const char* ext : {"obj", "ply"}) {
+    SCOPED_TRACE(ext);
+    const std::string p = path(std::string("textured quads.") + ext);
+    write_quad_mesh(p, m, {}, t);
+    EXPECT_EQ(texture_path_of(p), path("textured quads_texture.png"));
+    const MeshFile f = read_mesh(p);
+    QuadMesh live = m;
+    live.compact();
+    expect_same_quads(live, f);
+    ASSERT_EQ(f.texture.triangles.size(), 2 * f.quads.size());
+    ASSERT_EQ(f.texture.images.size(), 1u);
+    EXPECT_EQ(f.texture.images[0], texture_path_of(p));
+    for (std::size_t i = 0; i < f.quads.size(); ++i) {
+      const auto& c = t.corners[i + 1];  // face 0 is the tombstone
+      EXPECT_EQ(f.texture.coords[2 * i], (std::array<TexCoord, 3>{c[0], c[1], c[2]})) << i;
+      EXPECT_EQ(f.texture.coords[2 * i + 1], (std::array<TexCoord, 3>{c[0], c[2], c[3]})) << i;
+    }
+    const Image back = read_image(texture_path_of(p));
+    EXPECT_EQ(back.width, 3);
+    EXPECT_EQ(back.height, 2);
+    EXPECT_EQ(back.rgba, t.image.rgba);
   }
-  const Image back = read_image(texture_path_of(p));
   EXPECT_THROW(read_image(path("none.png")), InvalidInput);
-  EXPECT_THROW(write_png(dir_.string(), t.image), InvalidInput);  // a folder
   EXPECT_THROW(read_image(write("text.png", "not an image")), InvalidInput);
-  EXPECT_EQ(back.width, 3);
-  EXPECT_EQ(back.height, 2);
-  EXPECT_EQ(back.rgba, t.image.rgba);
-  EXPECT_THROW(write_quad_mesh(path("t.ply"), m, {}, t), std::invalid_argument);
+  EXPECT_THROW(write_png(dir_.string(), t.image), InvalidInput);  // a folder
+  EXPECT_THROW(write_quad_mesh(path("t.off"), m, {}, t), std::invalid_argument);
   fs::create_directories(path("taken.obj"));  // the OBJ cannot replace a folder
   EXPECT_THROW(write_quad_mesh(path("taken.obj"), m, {}, t), InvalidInput);
   EXPECT_FALSE(fs::exists(texture_path_of(path("taken.obj"))));

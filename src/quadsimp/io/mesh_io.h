@@ -32,15 +32,16 @@ struct QuadColours {
 
 //! Writes the quads of `mesh` as PLY (binary), OBJ or OFF, chosen by extension, with
 //! their `colours` if given (OBJ, as MeshLab writes them: the vertices' after the
-//! coordinates, the faces' as materials in PATH.mtl), and for OBJ their `texture` if
-//! given (its image in texture_path_of(PATH), named by the materials' map_Kd; MeshLab
-//! reads no texture on a PLY's quads). Each file appears atomically: written to a
-//! temporary beside it, then renamed.
+//! coordinates, the faces' as materials in PATH.mtl), and for OBJ and PLY their
+//! `texture` if given (its image in texture_path_of(PATH), named by the materials'
+//! map_Kd, or a PLY's TextureFile comment; a textured PLY's quads are triangle pairs with
+//! a faux diagonal, as MeshLab writes them, since it reads no texture on a polygon). Each
+//! file appears atomically: written to a temporary beside it, then renamed.
 //! \throw InvalidInput for an unknown extension or a file that cannot be written.
 void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadColours& colours = {},
                      const QuadTexture& texture = {});
 
-//! Where write_quad_mesh() puts an OBJ's texture: "DIR/NAME_texture.png" for DIR/NAME.obj.
+//! Where write_quad_mesh() puts a texture: "DIR/NAME_texture.png" for DIR/NAME.obj or .ply.
 std::string texture_path_of(const std::string& obj_path);
 
 //! The colours of `from` (read_mesh()'s) on the quads, as the MeshLab filters give them

@@ -49,12 +49,22 @@ void put_le(std::string& data, T value) {
 const char* const kColourProperties = "property uchar red\nproperty uchar green\nproperty uchar blue\n"
                                       "property uchar alpha\n";
 
-void write_ply(const std::string& path, const QuadMesh& q, const QuadColours& colours) {
+// PLY: quads as polygons; with a texture, as MeshLab writes a textured quad layer (it
+// reads no texture coordinates on a polygon): each quad two triangles split at corners
+// 0-2, as the texture was baked, their shared edge marked faux in the face flags, each
+// with its corners' coordinates, the image named by a TextureFile comment.
+void write_ply(const std::string& path, const QuadMesh& q, const QuadColours& colours, const QuadTexture& texture,
+               const std::string& image) {
+  const bool textured = !texture.empty();
   std::ofstream out(path, std::ios::binary);
-  std::string data = "ply\nformat binary_little_endian 1.0\ncomment quadsimp\nelement vertex " +
-                     std::to_string(q.n_vertices()) + "\nproperty double x\nproperty double y\nproperty double z\n";
+  std::string data = "ply\nformat binary_little_endian 1.0\ncomment quadsimp\n";
+  if (textured) data += "comment TextureFile " + image + "\n";
+  data += "element vertex " + std::to_string(q.n_vertices()) +
+          "\nproperty double x\nproperty double y\nproperty double z\n";
   if (!colours.vertices.empty()) data += kColourProperties;
-  data += "element face " + std::to_string(q.n_faces()) + "\nproperty list uchar int vertex_indices\n";
+  data += "element face " + std::to_string((textured ? 2 : 1) * q.n_faces()) +
+          "\nproperty list uchar int vertex_indices\n";
+  if (textured) data += "property int flags\nproperty list uchar float texcoord\n";
   if (!colours.faces.empty()) data += kColourProperties;
   data += "end_header\n";
   // Written a megabyte at a time: a copy of the whole file in memory would double a large
@@ -72,11 +82,29 @@ void write_ply(const std::string& path, const QuadMesh& q, const QuadColours& co
     spill(kChunk);
   }
   const std::vector<Index> id = q.live_vertex_ids();
+  // vcglib's faux bit of edge k (corner k to k+1) of a triangle.
+  const auto faux = [](int k) { return std::int32_t(0x40000 << k); };
   for (Index f = 0; f < q.face_capacity(); ++f) {
     if (!q.is_face_live(f)) continue;
-    data += char(4);
-    for (Index k = 0; k < 4; ++k) put_le(data, std::int32_t(id[q.vertex(f, k)]));
-    if (!colours.faces.empty()) data.append(reinterpret_cast<const char*>(colours.faces[f].data()), 4);
+    const auto put_colour = [&] {
+      if (!colours.faces.empty()) data.append(reinterpret_cast<const char*>(colours.faces[f].data()), 4);
+    };
+    if (!textured) {
+      data += char(4);
+      for (Index k = 0; k < 4; ++k) put_le(data, std::int32_t(id[q.vertex(f, k)]));
+      put_colour();
+    } else {
+      const int halves[2][3] = {{0, 1, 2}, {0, 2, 3}};
+      for (int half = 0; half < 2; ++half) {
+        data += char(3);
+        for (const int k : halves[half]) put_le(data, std::int32_t(id[q.vertex(f, Index(k))]));
+        put_le(data, faux(half == 0 ? 2 : 0));  // the diagonal: 2 -> 0 in the first, 0 -> 2 in the second
+        data += char(6);
+        for (const int k : halves[half])
+          for (const float x : texture.corners[f][std::size_t(k)]) put_le(data, x);
+        put_colour();
+      }
+    }
     spill(kChunk);
   }
   spill(0);
@@ -186,8 +214,8 @@ void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadCo
   if (!colours.faces.empty() && colours.faces.size() != mesh.face_capacity())
     throw std::invalid_argument("write_quad_mesh: one colour per face id expected");
   const bool textured = !texture.empty();
-  if (textured && (ext != "obj" || texture.corners.size() != mesh.face_capacity()))
-    throw std::invalid_argument("write_quad_mesh: a texture goes to .obj, with coordinates per face id");
+  if (textured && (ext == "off" || texture.corners.size() != mesh.face_capacity()))
+    throw std::invalid_argument("write_quad_mesh: a texture goes to .obj or .ply, with coordinates per face id");
   // An OBJ's face colours and texture go to a material file and an image beside it,
   // written first, and removed if the OBJ cannot be.
   const std::map<Colour, int> materials =
@@ -206,7 +234,7 @@ void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadCo
       });
     detail::write_atomically(path, [&](const std::string& tmp) {
       if (ext == "ply")
-        write_ply(tmp, mesh, colours);
+        write_ply(tmp, mesh, colours, texture, std::filesystem::path(image).filename().string());
       else if (ext == "obj")
         write_obj(tmp, mesh, colours, texture, std::filesystem::path(mtl).filename().string(), materials);
       else
