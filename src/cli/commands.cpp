@@ -63,6 +63,20 @@ void print_quality(const QuadQuality& q, const SurfaceDistance* d) {
                 100 * d->projectability);
 }
 
+// Why the quads' texture may not be written where `output`'s goes: over an image of the
+// input's texture (a scan.obj whose map_Kd is scan_texture.png, written as scan.ply), which
+// would be lost. Empty if it may.
+std::string texture_clash(const std::string& output, const Input& in) {
+  namespace fs = std::filesystem;
+  const std::string ours = texture_path_of(output);
+  std::error_code ec;
+  for (const std::string& image : in.source.texture.images)
+    if (fs::exists(ours, ec) && fs::equivalent(ours, image, ec))
+      return "the quads' texture " + ours + " would be written over the input's texture image; choose another "
+             "output name";
+  return {};
+}
+
 // The input's texture baked onto the quads, where the output keeps one (OBJ, PLY). An
 // image that cannot be read leaves the texture out, and says so.
 QuadTexture texture_for(const std::string& output, const Input& in, int size, const LogFn& log) {
@@ -110,6 +124,10 @@ int run_convert(const ConvertArgs& a) {
     const auto t0 = std::chrono::steady_clock::now();
     const LogFn log = stderr_log(a.quiet);
     Input in = load_input(a.input, {}, log);
+    if (const std::string why = texture_clash(a.output, in); !why.empty()) {
+      std::cerr << "quadsimp convert: " << why << "\n";
+      return kBadArguments;
+    }
     write_quad_mesh(a.output, in.quads, colours_of_quads(in.source, in.quads),
                     texture_for(a.output, in, a.texture_size, log));
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -144,6 +162,10 @@ int run_simplify(const SimplifyArgs& a) {
     const auto t0 = std::chrono::steady_clock::now();
     const LogFn log = stderr_log(a.quiet);
     Input in = load_input(a.input, {}, log);
+    if (const std::string why = texture_clash(a.output, in); !why.empty()) {
+      std::cerr << "quadsimp simplify: " << why << "\n";
+      return kBadArguments;
+    }
     const ReferenceSurface ref(std::move(in.reference));
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
     write_quad_mesh(a.output, in.quads, colours_of_quads(in.source, in.quads),

@@ -319,6 +319,17 @@ TEST_F(Cli, a_texture_reaches_obj_and_ply_quads) {
     }
     EXPECT_GT(checked, f.quads.size() / 2);  // the others lie at a pole or the seam
   }
+  // An output whose texture would be written over the input's image is refused, and the
+  // image is left as it was.
+  std::string globe = read("lonlat.ply");
+  globe.replace(globe.find("lonlat.png"), 10, "globe_texture.png");
+  const std::string image_before = read("lonlat.png");
+  write("globe_texture.png", image_before);
+  const CliRun clash = run("simplify " + write("globe.ply", globe) + " " + p("globe.obj") + " --faces 150");
+  EXPECT_EQ(clash.code, 2) << clash.out;
+  EXPECT_NE(clash.out.find("would be written over the input's texture image"), std::string::npos) << clash.out;
+  EXPECT_EQ(read("globe_texture.png"), image_before);
+  EXPECT_FALSE(fs::exists(p("globe.obj")));
   // --texture-size bounds the atlas (and is refused out of its range).
   ASSERT_EQ(run("simplify " + in + " " + p("small.obj") + " --faces 150 --texture-size 64 -q").code, 0);
   const Image small = read_image(texture_path_of(p("small.obj")));

@@ -42,7 +42,7 @@ void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadCo
                      const QuadTexture& texture = {});
 
 //! Where write_quad_mesh() puts a texture: "DIR/NAME_texture.png" for DIR/NAME.obj or .ply.
-std::string texture_path_of(const std::string& obj_path);
+std::string texture_path_of(const std::string& path);
 
 //! The colours of `from` (read_mesh()'s) on the quads, as the MeshLab filters give them
 //! (surface_colours.h): each vertex the vertex colour at its closest point on `from`'s

@@ -199,8 +199,8 @@ void write_mtl(const std::string& path, const std::map<Colour, int>& materials, 
 
 }  // namespace
 
-std::string texture_path_of(const std::string& obj_path) {
-  std::filesystem::path p(obj_path);
+std::string texture_path_of(const std::string& path) {
+  std::filesystem::path p(path);
   return p.replace_extension().string() + "_texture.png";
 }
 
