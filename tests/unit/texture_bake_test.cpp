@@ -211,3 +211,50 @@ TEST(TextureBake, texels_follow_the_split_the_quad_is_drawn_with) {
   EXPECT_LT(worst[1], 2);
   EXPECT_GT(worst[0], 20);
 }
+
+// A quad twice as wide as another gets a tile twice as wide, so that both have the input's
+// texel density; tiles never overlap, and a smaller largest side shrinks them alike.
+TEST(TextureBake, tiles_follow_the_quads_sizes) {
+  TriMesh plane = tri_grid(6, 4);  // [0, 3] x [0, 2]
+  for (Vec3& p : plane.positions) p = Vec3(3 * p.x(), 2 * p.y(), 0);
+  FileTexture tex;
+  tex.images = {"a"};
+  for (const auto& f : plane.faces) {
+    tex.triangles.push_back(f);
+    std::array<TexCoord, 3> uv;
+    for (int k = 0; k < 3; ++k) uv[k] = {float(plane.positions[f[k]].x() / 3), float(plane.positions[f[k]].y() / 2)};
+    tex.coords.push_back(uv);
+    tex.image.push_back(0);
+  }
+  // A unit square and a square of side 2 beside it, 0.01 above the plane.
+  const QuadMesh quads = QuadMesh::from_faces(
+      {{0, 0, 0.01}, {1, 0, 0.01}, {1, 1, 0.01}, {0, 1, 0.01}, {1, 0, 0.01}, {3, 0, 0.01}, {3, 2, 0.01}, {1, 2, 0.01}},
+      {{0, 1, 2, 3}, {4, 5, 6, 7}});
+  const auto inner_width = [](const QuadTexture& t, Index f) {
+    return std::lround((t.corners[f][1][0] - t.corners[f][0][0]) * float(t.image.width));
+  };
+  for (const int side : {512, 128, 40}) {
+    SCOPED_TRACE(side);
+    const QuadTexture t = bake_texture(plane.positions, tex, {gradient(side, 0)}, quads);
+    // The image spends side^2 / 6 texels on each unit of area: side / sqrt(6) along a unit.
+    const double small = std::max(4.0, side / std::sqrt(6.0));
+    EXPECT_NEAR(inner_width(t, 0), std::min(254.0, small), 1);
+    EXPECT_NEAR(inner_width(t, 1), std::min(254.0, 2 * side / std::sqrt(6.0)), 1);
+    // The two tiles, borders included, do not overlap: [x0, x1) x [y0, y1) in texels.
+    const auto rect = [&](Index f) {
+      const long x0 = std::lround(t.corners[f][0][0] * float(t.image.width)) - 1;
+      const long y0 = std::lround((1 - t.corners[f][3][1]) * float(t.image.height)) - 1;
+      const long w = inner_width(t, f) + 2;
+      return std::array<long, 4>{x0, y0, x0 + w, y0 + w};
+    };
+    const auto a = rect(0), b = rect(1);
+    EXPECT_TRUE(a[2] <= b[0] || b[2] <= a[0] || a[3] <= b[1] || b[3] <= a[1]);
+    EXPECT_LE(std::max(a[2], b[2]), t.image.width);
+    EXPECT_LE(std::max(a[3], b[3]), t.image.height);
+  }
+  TextureBakeOptions small_atlas;
+  small_atlas.max_side = 60;
+  const QuadTexture t = bake_texture(plane.positions, tex, {gradient(512, 0)}, quads, small_atlas);
+  EXPECT_LE(std::max(t.image.width, t.image.height), 60);
+  EXPECT_NEAR(double(inner_width(t, 1)) / double(inner_width(t, 0)), 2.0, 0.25);
+}

@@ -33,17 +33,83 @@ std::array<double, 4> sample(const Image& im, TexCoord uv) {
   return c;
 }
 
-// Texels the images spend on the surface: each triangle's area in texture space.
-double texels_on_surface(const FileTexture& t, const std::vector<Image>& images) {
-  double texels = 0;
+// Texels the images spend on a unit of the surface's area: its triangles' areas in texture
+// space (in texels) over their areas.
+double texel_density(const std::vector<Vec3>& positions, const FileTexture& t, const std::vector<Image>& images) {
+  double texels = 0, area = 0;
   for (std::size_t i = 0; i < t.triangles.size(); ++i) {
     const auto& c = t.coords[i];
-    const double area = 0.5 * std::abs(double(c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) -
-                                       double(c[2][0] - c[0][0]) * (c[1][1] - c[0][1]));
+    const double uv_area = 0.5 * std::abs(double(c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) -
+                                          double(c[2][0] - c[0][0]) * (c[1][1] - c[0][1]));
     const Image& im = images[std::size_t(t.image[i])];
-    texels += area * im.width * im.height;
+    texels += uv_area * im.width * im.height;
+    const auto& f = t.triangles[i];
+    area += 0.5 * (positions[f[1]] - positions[f[0]]).cross(positions[f[2]] - positions[f[0]]).norm();
   }
-  return texels;
+  return area > 0 ? texels / area : 0.0;
+}
+
+// A quad's square in the atlas, its one-texel border included.
+struct Tile {
+  int x = 0, y = 0, size = 0;
+};
+
+// Tiles of `sizes` on shelves `width` wide, largest first (then by quad), each shelf as tall
+// as its first: their places; the atlas's height is the last shelf's bottom.
+std::vector<Tile> pack(const std::vector<int>& sizes, int width) {
+  std::vector<std::size_t> order(sizes.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; });
+  std::vector<Tile> tiles(sizes.size());
+  int x = 0, y = 0, shelf = 0;
+  for (const std::size_t i : order) {
+    if (x + sizes[i] > width && x > 0) x = 0, y += shelf, shelf = 0;
+    tiles[i] = {x, y, sizes[i]};
+    x += sizes[i];
+    shelf = std::max(shelf, sizes[i]);
+  }
+  return tiles;
+}
+
+// Where each quad's tile goes. A tile holds as many texels as the input's images spend on
+// the quad's area (`texels_per_area()`, the input's texel density), so that a large quad's
+// texture is no coarser than a small one's: 6 to 256 texels a side. Where the atlas would pass
+// options.max_side, every tile shrinks alike (to 3 texels at least). options.tile gives
+// every quad that size, in a square grid.
+template <class TexelsPerArea>
+std::vector<Tile> layout(const QuadMesh& quads, const std::vector<Index>& faces, const TextureBakeOptions& options,
+                         TexelsPerArea texels_per_area) {
+  const std::size_t n = faces.size();
+  if (options.tile > 0) {
+    const int columns = int(std::ceil(std::sqrt(double(n))));
+    const int rows = int((n + std::size_t(columns) - 1) / std::size_t(columns));
+    const int tile = std::max(3, std::min(options.tile, options.max_side / std::max(columns, rows)));
+    return pack(std::vector<int>(n, tile), columns * tile);
+  }
+  std::vector<double> side(n);  // each quad's size: the root of its area
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto p = quads.positions_of(quads.face_vertices(faces[i]));
+    side[i] = std::sqrt(0.5 * (p[2] - p[0]).cross(p[3] - p[1]).norm());
+  }
+  double density = std::sqrt(texels_per_area());  // texels along a unit of length
+  std::vector<int> sizes(n);
+  for (int attempt = 0;; ++attempt) {
+    double texels = 0;
+    int largest = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      // Inside the border: 4 texels at least, down to 1 once the atlas has had to shrink.
+      sizes[i] = 2 + std::clamp(int(std::lround(density * side[i])), attempt == 0 ? 4 : 1, 254);
+      texels += double(sizes[i]) * sizes[i];
+      largest = std::max(largest, sizes[i]);
+    }
+    // Shelves about as wide as the atlas is tall, in whole largest tiles.
+    const int width = std::max(1, int(std::ceil(std::sqrt(texels) / largest))) * largest;
+    std::vector<Tile> tiles = pack(sizes, width);
+    int extent = width;
+    for (const Tile& t : tiles) extent = std::max(extent, t.y + t.size);
+    if (extent <= options.max_side || largest <= 3 || attempt == 30) return tiles;
+    density *= 0.97 * options.max_side / extent;
+  }
 }
 
 }  // namespace
@@ -61,18 +127,12 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
   QuadTexture out;
   if (faces.empty() || texture.empty()) return out;
 
-  // Tiles in a square grid; a texel's border round each, copied from its edge, keeps
-  // filtering from reading a neighbour's tile.
-  const std::size_t n = faces.size();
-  const int columns = int(std::ceil(std::sqrt(double(n))));
-  const int rows = int((n + std::size_t(columns) - 1) / std::size_t(columns));
-  int tile = options.tile;
-  if (tile <= 0) tile = 2 + int(std::lround(std::sqrt(texels_on_surface(texture, images) / double(n))));
-  tile = std::clamp(tile, 6, 256);
-  tile = std::max(3, std::min(tile, options.max_side / std::max(columns, rows)));
-  const int inner = tile - 2;
+  const std::vector<Tile> tiles =
+      layout(quads, faces, options, [&] { return texel_density(positions, texture, images); });
+  int width = 0, height = 0;
+  for (const Tile& t : tiles) width = std::max(width, t.x + t.size), height = std::max(height, t.y + t.size);
   Image& im = out.image;
-  im.width = columns * tile, im.height = rows * tile;
+  im.width = width, im.height = height;
   // Opaque black where no tile is: an opaque input gives an opaque atlas (written as RGB).
   im.rgba.assign(std::size_t(im.width) * std::size_t(im.height) * 4, 0);
   for (std::size_t i = 3; i < im.rgba.size(); i += 4) im.rgba[i] = 255;
@@ -82,10 +142,10 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
   soup.positions = positions;
   soup.faces = texture.triangles;
   const ReferenceSurface surface(std::move(soup));
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+  tbb::parallel_for(std::size_t(0), faces.size(), [&](std::size_t i) {
     const Index f = faces[i];
     const auto p = quads.positions_of(quads.face_vertices(f));
-    const int x0 = int(i % std::size_t(columns)) * tile, y0 = int(i / std::size_t(columns)) * tile;
+    const int x0 = tiles[i].x, y0 = tiles[i].y, tile = tiles[i].size, inner = tile - 2;
     // Tile coordinates (s, t) in [0, 1]^2, t upwards: corner 0 at (0, 0), 1 at (1, 0), 2 at (1, 1).
     const double W = im.width, H = im.height;
     out.corners[f] = {TexCoord{float((x0 + 1) / W), float(1 - (y0 + 1 + inner) / H)},
