@@ -167,6 +167,7 @@ int run_simplify(const SimplifyArgs& a) {
       return kBadArguments;
     }
     const ReferenceSurface ref(std::move(in.reference));
+    const Index converted = in.quads.n_faces();  // what a share of the quads is of
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
     write_quad_mesh(a.output, in.quads, colours_of_quads(in.source, in.quads),
                     texture_for(a.output, in, a.texture_size, log));
@@ -186,7 +187,8 @@ int run_simplify(const SimplifyArgs& a) {
                                   ", \"border_collapses\": " + n(r.border_collapses) +
                                   ", \"border_insets\": " + n(r.border_insets) + ", \"tips\": " + n(r.tips) +
                                   ", \"chord_collapses\": " + n(r.chord_collapses) + ", \"rotations\": " + n(r.rotations) +
-                                  ", \"unfolds\": " + n(r.unfolds) + ", \"input_faces\": " + n(r.initial_faces) +
+                                  ", \"unfolds\": " + n(r.unfolds) + ", \"converted_faces\": " + n(converted) +
+                                  ", \"input_faces\": " + n(r.initial_faces) +
                                   ", \"target_faces\": " + n(r.target_faces) +
                                   ", \"refused\": {\"topology\": " + n(r.refused_topology) +
                                   ", \"valence\": " + n(r.refused_valence) + ", \"geometry\": " + n(r.refused_geometry) +
