@@ -33,20 +33,17 @@ std::array<double, 4> sample(const Image& im, TexCoord uv) {
   return c;
 }
 
-// Texels the images spend on a unit of the surface's area: its triangles' areas in texture
-// space (in texels) over their areas.
-double texel_density(const std::vector<Vec3>& positions, const FileTexture& t, const std::vector<Image>& images) {
-  double texels = 0, area = 0;
+// Texels the images spend on the surface: its triangles' areas in texture space.
+double texels_spent(const FileTexture& t, const std::vector<Image>& images) {
+  double texels = 0;
   for (std::size_t i = 0; i < t.triangles.size(); ++i) {
     const auto& c = t.coords[i];
     const double uv_area = 0.5 * std::abs(double(c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) -
                                           double(c[2][0] - c[0][0]) * (c[1][1] - c[0][1]));
     const Image& im = images[std::size_t(t.image[i])];
     texels += uv_area * im.width * im.height;
-    const auto& f = t.triangles[i];
-    area += 0.5 * (positions[f[1]] - positions[f[0]]).cross(positions[f[2]] - positions[f[0]]).norm();
   }
-  return area > 0 ? texels / area : 0.0;
+  return texels;
 }
 
 // A quad's square in the atlas, its one-texel border included.
@@ -54,31 +51,39 @@ struct Tile {
   int x = 0, y = 0, size = 0;
 };
 
-// Tiles of `sizes` on shelves `width` wide, largest first (then by quad), each shelf as tall
-// as its first: their places; the atlas's height is the last shelf's bottom.
-std::vector<Tile> pack(const std::vector<int>& sizes, int width) {
+// The tiles' places, and the atlas's size.
+struct Atlas {
+  std::vector<Tile> tiles;
+  int width = 0, height = 0;
+};
+
+// Tiles of `sizes` on shelves at most `width` wide, largest first (then by quad), each shelf
+// as tall as its first.
+Atlas pack(const std::vector<int>& sizes, int width) {
   std::vector<std::size_t> order(sizes.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; });
-  std::vector<Tile> tiles(sizes.size());
+  Atlas atlas;
+  atlas.tiles.resize(sizes.size());
   int x = 0, y = 0, shelf = 0;
   for (const std::size_t i : order) {
     if (x + sizes[i] > width && x > 0) x = 0, y += shelf, shelf = 0;
-    tiles[i] = {x, y, sizes[i]};
+    atlas.tiles[i] = {x, y, sizes[i]};
     x += sizes[i];
     shelf = std::max(shelf, sizes[i]);
+    atlas.width = std::max(atlas.width, x);
   }
-  return tiles;
+  atlas.height = y + shelf;
+  return atlas;
 }
 
 // Where each quad's tile goes. A tile holds as many texels as the input's images spend on
-// the quad's area (`texels_per_area()`, the input's texel density), so that a large quad's
+// the quad's area (`texels_per_area`, the input's texel density), so that a large quad's
 // texture is no coarser than a small one's: 6 to 256 texels a side. Where the atlas would pass
 // options.max_side, every tile shrinks alike (to 3 texels at least). options.tile gives
 // every quad that size, in a square grid.
-template <class TexelsPerArea>
-std::vector<Tile> layout(const QuadMesh& quads, const std::vector<Index>& faces, const TextureBakeOptions& options,
-                         TexelsPerArea texels_per_area) {
+Atlas layout(const QuadMesh& quads, const std::vector<Index>& faces, const TextureBakeOptions& options,
+             double texels_per_area) {
   const std::size_t n = faces.size();
   if (options.tile > 0) {
     const int columns = int(std::ceil(std::sqrt(double(n))));
@@ -87,11 +92,8 @@ std::vector<Tile> layout(const QuadMesh& quads, const std::vector<Index>& faces,
     return pack(std::vector<int>(n, tile), columns * tile);
   }
   std::vector<double> side(n);  // each quad's size: the root of its area
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto p = quads.positions_of(quads.face_vertices(faces[i]));
-    side[i] = std::sqrt(0.5 * (p[2] - p[0]).cross(p[3] - p[1]).norm());
-  }
-  double density = std::sqrt(texels_per_area());  // texels along a unit of length
+  for (std::size_t i = 0; i < n; ++i) side[i] = std::sqrt(0.5 * quads.face_area_normal(faces[i]).norm());
+  double density = std::sqrt(texels_per_area);  // texels along a unit of length
   std::vector<int> sizes(n);
   for (int attempt = 0;; ++attempt) {
     double texels = 0;
@@ -104,10 +106,9 @@ std::vector<Tile> layout(const QuadMesh& quads, const std::vector<Index>& faces,
     }
     // Shelves about as wide as the atlas is tall, in whole largest tiles.
     const int width = std::max(1, int(std::ceil(std::sqrt(texels) / largest))) * largest;
-    std::vector<Tile> tiles = pack(sizes, width);
-    int extent = width;
-    for (const Tile& t : tiles) extent = std::max(extent, t.y + t.size);
-    if (extent <= options.max_side || largest <= 3 || attempt == 30) return tiles;
+    Atlas atlas = pack(sizes, width);
+    const int extent = std::max(atlas.width, atlas.height);
+    if (extent <= options.max_side || largest <= 3 || attempt == 30) return atlas;
     density *= 0.97 * options.max_side / extent;
   }
 }
@@ -127,21 +128,19 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
   QuadTexture out;
   if (faces.empty() || texture.empty()) return out;
 
-  const std::vector<Tile> tiles =
-      layout(quads, faces, options, [&] { return texel_density(positions, texture, images); });
-  int width = 0, height = 0;
-  for (const Tile& t : tiles) width = std::max(width, t.x + t.size), height = std::max(height, t.y + t.size);
-  Image& im = out.image;
-  im.width = width, im.height = height;
-  // Opaque black where no tile is: an opaque input gives an opaque atlas (written as RGB).
-  im.rgba.assign(std::size_t(im.width) * std::size_t(im.height) * 4, 0);
-  for (std::size_t i = 3; i < im.rgba.size(); i += 4) im.rgba[i] = 255;
-  out.corners.assign(quads.face_capacity(), {});
-
   TriMesh soup;
   soup.positions = positions;
   soup.faces = texture.triangles;
   const ReferenceSurface surface(std::move(soup));
+  const double density = surface.area() > 0 ? texels_spent(texture, images) / surface.area() : 0.0;
+  const Atlas atlas = layout(quads, faces, options, density);
+  const std::vector<Tile>& tiles = atlas.tiles;
+  Image& im = out.image;
+  im.width = atlas.width, im.height = atlas.height;
+  // Opaque black where no tile is: an opaque input gives an opaque atlas (written as RGB).
+  im.rgba.assign(std::size_t(im.width) * std::size_t(im.height) * 4, 0);
+  for (std::size_t i = 3; i < im.rgba.size(); i += 4) im.rgba[i] = 255;
+  out.corners.assign(quads.face_capacity(), {});
   tbb::parallel_for(std::size_t(0), faces.size(), [&](std::size_t i) {
     const Index f = faces[i];
     const auto p = quads.positions_of(quads.face_vertices(f));
@@ -152,7 +151,7 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
                       TexCoord{float((x0 + 1 + inner) / W), float(1 - (y0 + 1 + inner) / H)},
                       TexCoord{float((x0 + 1 + inner) / W), float(1 - (y0 + 1) / H)},
                       TexCoord{float((x0 + 1) / W), float(1 - (y0 + 1) / H)}};
-    const Vec3 normal = (p[2] - p[0]).cross(p[3] - p[1]);
+    const Vec3 normal = quads.face_area_normal(f);
     const bool split_13 = !options.split.empty() && options.split[f];
     const double reach = std::max((p[2] - p[0]).norm(), (p[3] - p[1]).norm());
     // A texel's closest point lies within the last one's distance and a texel's width: a
