@@ -36,13 +36,10 @@ struct Material {
 // its last field, after any options ("-s 1 1 1 wall.png"). Named relative to the material
 // file's folder, with Windows' separators too.
 std::string image_on(const detail::TextLines& line, const std::filesystem::path& folder) {
-  const auto path_of = [&](std::string name) {
-    std::replace(name.begin(), name.end(), '\\', '/');
-    return (folder / name).string();
-  };
   std::error_code ec;
-  if (const std::string whole = path_of(name_on(line)); std::filesystem::is_regular_file(whole, ec)) return whole;
-  return path_of(std::string(line[line.size() - 1]));
+  const std::string whole = detail::file_beside(folder, name_on(line));
+  if (std::filesystem::is_regular_file(whole, ec)) return whole;
+  return detail::file_beside(folder, std::string(line[line.size() - 1]));
 }
 
 // The materials of an .mtl file, into `materials` by name, as MeshLab reads them. A file
@@ -147,11 +144,7 @@ MeshFile read_obj(const std::string& path) {
         face_colours.resize(triangles.size(), *material->colour);
       if (texture_whole && (texture_whole = material && !material->image.empty())) {
         const int image = image_number.emplace(material->image, int(image_number.size())).first->second;
-        for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
-          texture.triangles.push_back({corners[0], corners[i], corners[i + 1]});
-          texture.coords.push_back({corner_coords[0], corner_coords[i], corner_coords[i + 1]});
-          texture.image.push_back(image);
-        }
+        detail::fan(corners.data(), corner_coords.data(), corners.size(), image, texture);
       }
     } else if (kw == "vt") {
       textured = true;

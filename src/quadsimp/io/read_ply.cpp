@@ -243,28 +243,24 @@ FileTexture texture_of_polygons(const std::string& path, const std::vector<std::
                                 const std::vector<TexCoord>& vertex_uvs, const std::vector<int>& image) {
   FileTexture t;
   if (images.empty() || polygon_start.size() < 2) return t;
+  std::vector<TexCoord> by_vertex;  // a polygon's corners' coordinates, from their vertices'
   for (std::size_t i = 0; i + 1 < polygon_start.size(); ++i) {
     const std::size_t from = polygon_start[i], n = polygon_start[i + 1] - from;
     if (image[i] < 0 || std::size_t(image[i]) >= images.size()) return {};
-    const auto coord = [&](std::size_t k) -> const TexCoord* {
-      if (first_uv[i] != kNoUvs) return &corner_uvs[first_uv[i] + k];
-      const Index v = corners[from + k];
-      return v < vertex_uvs.size() ? &vertex_uvs[v] : nullptr;
-    };
-    for (std::size_t k = 1; k + 1 < n; ++k) {
-      const TexCoord *a = coord(0), *b = coord(k), *c = coord(k + 1);
-      if (!a || !b || !c) return {};
-      t.triangles.push_back({corners[from], corners[from + k], corners[from + k + 1]});
-      t.coords.push_back({*a, *b, *c});
-      t.image.push_back(image[i]);
+    const TexCoord* uv = first_uv[i] != kNoUvs ? &corner_uvs[first_uv[i]] : nullptr;
+    if (!uv) {
+      by_vertex.clear();
+      for (std::size_t k = 0; k < n; ++k) {
+        const Index v = corners[from + k];
+        if (v >= vertex_uvs.size()) return {};
+        by_vertex.push_back(vertex_uvs[v]);
+      }
+      uv = by_vertex.data();
     }
+    detail::fan(&corners[from], uv, n, image[i], t);
   }
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  for (const std::string& name : images) {
-    std::string file = name;
-    std::replace(file.begin(), file.end(), '\\', '/');
-    t.images.push_back((folder / file).string());
-  }
+  for (const std::string& name : images) t.images.push_back(detail::file_beside(folder, name));
   return t;
 }
 

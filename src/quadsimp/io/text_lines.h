@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
@@ -117,6 +118,23 @@ inline void fan(const Index* c, std::size_t n, std::vector<std::array<Index, 3>>
     triangles.push_back({c[0], c[i], c[i + 1]});
     faux.push_back(std::uint8_t((i > 1 ? 1u : 0u) | (i + 2 < n ? 4u : 0u)));
   }
+}
+
+//! The same with the corners' texture coordinates uv[0..n), into image `image`, appended
+//! to a file's texture.
+inline void fan(const Index* c, const TexCoord* uv, std::size_t n, int image, FileTexture& t) {
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    t.triangles.push_back({c[0], c[i], c[i + 1]});
+    t.coords.push_back({uv[0], uv[i], uv[i + 1]});
+    t.image.push_back(image);
+  }
+}
+
+//! A file that a mesh file names (an image), as a path from `folder`, the mesh file's;
+//! Windows' separators read as such.
+inline std::string file_beside(const std::filesystem::path& folder, std::string name) {
+  std::replace(name.begin(), name.end(), '\\', '/');
+  return (folder / name).string();
 }
 
 }  // namespace qs::detail
