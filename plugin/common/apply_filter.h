@@ -39,15 +39,6 @@ std::string layer_name(const Model& m) {
   return label.empty() ? "layer " + std::to_string(m.id()) : label;
 }
 
-//! A layer's texture, kept to bake onto its quads: the layer changes (convert) or its
-//! vertices are renumbered (prepare_input()) meanwhile.
-struct LayerTexture {
-  std::vector<Vec3> positions;
-  FileTexture texture;
-  std::vector<Image> images;
-  bool empty() const { return texture.empty(); }
-};
-
 //! How a MeshLab generation keeps textures, which the two do not share: `load(model*)` gives
 //! a layer's images, one per entry of its cm.textures (an empty Image where one cannot be
 //! had); `store(input model*, quads model*, name, image)` gives the quads' layer its one
@@ -63,39 +54,41 @@ TextureStore<Load, Store> texture_store(Load load, Store store) {
   return {load, store};
 }
 
-//! The layer's texture where every face has coordinates and a texture that loads.
+//! The layer of `m` as the core reads it. Its texture (MeshFile::texture) is kept where
+//! every face has coordinates into a texture that loads, whose images go to `images`; else
+//! none is, and loading logs that it is not carried.
 template <class Model, class Textures>
-LayerTexture layer_texture(Model* m, const MeshFile& file, Textures& textures) {
-  if (!file.texture_coordinates) return {};
-  const bool wedge = m->hasDataMask(Model::MM_WEDGTEXCOORD);
-  LayerTexture t;
-  t.texture = texture_of(m->cm, wedge, std::vector<std::string>(m->cm.textures.begin(), m->cm.textures.end()));
-  if (t.texture.empty()) return {};
-  t.images = textures.load(m);
-  for (const int i : t.texture.image)
-    if (t.images[std::size_t(i)].empty()) return {};
-  t.positions = file.positions;
-  return t;
+MeshFile layer_file(Model* m, Textures& textures, std::vector<Image>& images) {
+  MeshFile file = mesh_file_of(m->cm);
+  file.texture_coordinates = m->hasDataMask(Model::MM_WEDGTEXCOORD) || m->hasDataMask(Model::MM_VERTTEXCOORD);
+  if (!file.texture_coordinates) return file;
+  file.texture = texture_of(m->cm, m->hasDataMask(Model::MM_WEDGTEXCOORD),
+                            std::vector<std::string>(m->cm.textures.begin(), m->cm.textures.end()));
+  if (file.texture.empty()) return file;
+  images = textures.load(m);
+  for (const int i : file.texture.image)
+    if (images[std::size_t(i)].empty()) {
+      file.texture = {};
+      break;
+    }
+  return file;
 }
 
-//! Bakes `t` onto the quads `q` that `result` holds (assign_quads()), as texture
-//! coordinates into a texture of their own named after the input layer.
+//! Gives the layer `result` holding `q` (assign_quads()) their texture, named after the
+//! input layer, as texture coordinates into it.
 template <class Model, class Textures>
-void bake_onto(const LayerTexture& t, const QuadMesh& q, Model* input, Model* result, Textures& textures,
-               const std::string& name, Outcome& out) {
-  if (t.empty()) return;
-  TextureBakeOptions options;
-  options.split = split_diagonals(q);
-  const QuadTexture baked = bake_texture(t.positions, t.texture, t.images, q, options);
+void store_texture(const LayerQuads& q, Model* input, Model* result, Textures& textures, const std::string& name,
+                   Outcome& out) {
+  if (q.texture.empty()) return;
   std::string file = std::filesystem::path(name).stem().string() + "_quads_texture.png";
-  if (const std::string why = textures.store(input, result, file, baked.image); !why.empty()) {
+  if (const std::string why = textures.store(input, result, file, q.texture.image); !why.empty()) {
     out.log.push_back("the texture is not carried to the quads: " + why);
     return;
   }
   result->updateDataMask(Model::MM_WEDGTEXCOORD);
-  assign_texture(result->cm, q, baked);
-  out.log.push_back("texture baked onto the quads: " + file + ", " + std::to_string(baked.image.width) + " x " +
-                    std::to_string(baked.image.height) + " texels, a tile for each quad");
+  assign_texture(result->cm, q.mesh, q.split, q.texture);
+  out.log.push_back("texture baked onto the quads: " + file + ", " + std::to_string(q.texture.image.width) + " x " +
+                    std::to_string(q.texture.image.height) + " texels, a tile for each quad");
 }
 
 //! Runs filter `id` on the current layer of `md`. `update_box(model*)` recomputes a
@@ -117,23 +110,17 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
   const bool coloured = vertex_coloured || face_coloured;
   const int colour_mask =
       (vertex_coloured ? int(Model::MM_VERTCOLOR) : 0) | (face_coloured ? int(Model::MM_FACECOLOR) : 0);
-  // The quads take its texture, baked (bake_onto()), where every face has one; else
-  // the log says it is not carried.
-  LayerTexture texture;
-  const auto layer_file = [&] {
-    MeshFile file = mesh_file_of(m->cm);
-    file.texture_coordinates = m->hasDataMask(Model::MM_WEDGTEXCOORD) || m->hasDataMask(Model::MM_VERTTEXCOORD);
-    texture = layer_texture(m, file, textures);
-    file.texture = texture.texture;
-    return file;
-  };
+  // The quads take its texture too, baked onto them (run_simplification()).
+  std::vector<Image> images;
   Outcome out;
   switch (id) {
     case kSimplify: {
-      const QuadMesh q = run_simplification(layer_file(), name, simplify_params_of(params), progress_of(cb), out);
+      MeshFile file = layer_file(m, textures, images);
+      const LayerQuads q =
+          run_simplification(std::move(file), name, simplify_params_of(params), progress_of(cb), out, images);
       auto* result = md.addNewMesh("", QString::fromStdString(name + " quads"), true);
-      assign_quads(result->cm, q);
-      bake_onto(texture, q, m, result, textures, name, out);
+      assign_quads(result->cm, q.mesh, q.split);
+      store_texture(q, m, result, textures, name, out);
       if (coloured) {
         result->updateDataMask(colour_mask);
         paint(SurfaceColours<Mesh>(m->cm, vertex_coloured, face_coloured), result->cm);
@@ -143,13 +130,14 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
       break;
     }
     case kConvert: {
-      const QuadMesh q = run_conversion(layer_file(), name, out);
+      MeshFile file = layer_file(m, textures, images);
+      const LayerQuads q = run_conversion(std::move(file), name, out, images);
       std::optional<SurfaceColours<Mesh>> colours;
       if (coloured) colours.emplace(m->cm, vertex_coloured, face_coloured);
-      assign_quads(m->cm, q);
+      assign_quads(m->cm, q.mesh, q.split);
       if (colours) paint(*colours, m->cm);
       m->clearDataMask(Model::MM_WEDGTEXCOORD | Model::MM_VERTTEXCOORD);
-      bake_onto(texture, q, m, m, textures, name, out);
+      store_texture(q, m, m, textures, name, out);
       m->clearDataMask(Model::MM_VERTFACETOPO);
       update_box(m);
       mark_polygonal(m);

@@ -33,10 +33,23 @@ void describe_input(const Input& in, const std::string& name, Outcome& o) {
                   (r.refined ? ", refined once" : ""));
 }
 
+// The prepared (and simplified) input's quads, each split as MeshLab will draw it, with the
+// input's texture (Input::source) baked onto them that way.
+LayerQuads quads_of(Input& in, const std::vector<Image>& images) {
+  LayerQuads out;
+  TextureBakeOptions options;
+  options.split = split_diagonals(in.quads);
+  if (!in.source.texture.empty())
+    out.texture = bake_texture(in.source.positions, in.source.texture, images, in.quads, options);
+  out.split = std::move(options.split);
+  out.mesh = std::move(in.quads);
+  return out;
+}
+
 }  // namespace
 
-QuadMesh run_simplification(MeshFile layer, const std::string& name, const SimplifyParams& params,
-                            const ProgressFn& progress, Outcome& o) {
+LayerQuads run_simplification(MeshFile layer, const std::string& name, const SimplifyParams& params,
+                              const ProgressFn& progress, Outcome& o, const std::vector<Image>& images) {
   const auto t0 = std::chrono::steady_clock::now();
   Input in = prepare_input(std::move(layer), name, {}, log_into(o));
   describe_input(in, name, o);
@@ -50,14 +63,14 @@ QuadMesh run_simplification(MeshFile layer, const std::string& name, const Simpl
   for (std::string& note : result_notes(r, q, r.target_faces)) o.log.push_back(std::move(note));
   o.values = {{"faces", q.faces}, {"vertices", q.vertices}, {"regular_percent", q.regular_percent},
               {"max_valence", q.max_valence}, {"seconds", s}};
-  return std::move(in.quads);
+  return quads_of(in, images);
 }
 
-QuadMesh run_conversion(MeshFile layer, const std::string& name, Outcome& o) {
+LayerQuads run_conversion(MeshFile layer, const std::string& name, Outcome& o, const std::vector<Image>& images) {
   Input in = prepare_input(std::move(layer), name, {}, log_into(o));
   describe_input(in, name, o);
   o.values = {{"faces", in.quads.n_faces()}, {"pairing_rate", in.convert.pairing_rate()}};
-  return std::move(in.quads);
+  return quads_of(in, images);
 }
 
 Fitmaps run_fitmaps(const MeshFile& layer, const std::string& name, double tau, const ProgressFn& progress,

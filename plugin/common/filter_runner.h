@@ -4,6 +4,7 @@
 // the same core functions) give the same results.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/mesh/quad_mesh.h"
 #include "quadsimp/simplify/pipeline.h"
+#include "quadsimp/texture/texture_bake.h"
 
 namespace qs::plugin {
 
@@ -20,12 +22,23 @@ struct Outcome {
   std::map<std::string, double> values;
 };
 
-//! Prepares `layer` (cleaning, conversion) and simplifies it. \throw InvalidInput.
-QuadMesh run_simplification(MeshFile layer, const std::string& name, const SimplifyParams& params,
-                            const ProgressFn& progress, Outcome& outcome);
+//! A layer's quads, as MeshLab draws them, and the layer's texture on them.
+struct LayerQuads {
+  QuadMesh mesh;
+  std::vector<std::uint8_t> split;  //!< per face id: the diagonal it is drawn split at (split_diagonals())
+  QuadTexture texture;              //!< the layer's texture baked onto them, or none
+};
 
-//! Prepares `layer` and returns its quads. \throw InvalidInput.
-QuadMesh run_conversion(MeshFile layer, const std::string& name, Outcome& outcome);
+//! Prepares `layer` (cleaning, conversion) and simplifies it; a layer with a texture
+//! (MeshFile::texture, whose images are `images`) gets it baked onto the quads, as the CLI
+//! bakes it. \throw InvalidInput.
+LayerQuads run_simplification(MeshFile layer, const std::string& name, const SimplifyParams& params,
+                              const ProgressFn& progress, Outcome& outcome, const std::vector<Image>& images = {});
+
+//! Prepares `layer` and returns its quads, with its texture as run_simplification() does.
+//! \throw InvalidInput.
+LayerQuads run_conversion(MeshFile layer, const std::string& name, Outcome& outcome,
+                          const std::vector<Image>& images = {});
 
 //! S and M fitmaps at the layer's own vertices (cleaning may merge or drop vertices,
 //! so each one reads the field at its closest point on the cleaned surface).

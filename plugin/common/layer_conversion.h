@@ -54,11 +54,11 @@ MeshFile mesh_file_of(const CMesh& m) {
 }
 
 //! Replaces the content of `m` with the quads of `q`, each as two triangles split
-//! along the diagonal split_diagonals() picks, which is marked faux. At a doublet (two
-//! quads sharing two edges) both quads' shorter diagonals join the same two corners,
+//! along the diagonal `split` (split_diagonals()) picks, which is marked faux. At a doublet
+//! (two quads sharing two edges) both quads' shorter diagonals join the same two corners,
 //! which made the same triangle twice, and MeshLab's polygon view then saw an 8-gon.
 template <class CMesh>
-void assign_quads(CMesh& m, const QuadMesh& q) {
+void assign_quads(CMesh& m, const QuadMesh& q, const std::vector<std::uint8_t>& split) {
   using Alloc = typename vcg::tri::Allocator<CMesh>;
   m.Clear();
   const std::vector<Index> id = q.live_vertex_ids();
@@ -71,7 +71,6 @@ void assign_quads(CMesh& m, const QuadMesh& q) {
   (void)vi;
   Alloc::AddFaces(m, 2 * std::size_t(q.n_faces()));
   std::size_t f = 0;
-  const std::vector<std::uint8_t> split = split_diagonals(q);
   for (Index face = 0; face < q.face_capacity(); ++face) {
     if (!q.is_face_live(face)) continue;
     auto c = q.face_vertices(face);
@@ -85,6 +84,11 @@ void assign_quads(CMesh& m, const QuadMesh& q) {
     t1.SetF(2);  // c2 -> c0
     t2.SetF(0);  // c0 -> c2
   }
+}
+
+template <class CMesh>
+void assign_quads(CMesh& m, const QuadMesh& q) {
+  assign_quads(m, q, split_diagonals(q));
 }
 
 //! The texture of a layer: its live faces' corner coordinates (wedge ones if `wedge`,
@@ -114,11 +118,11 @@ FileTexture texture_of(const CMesh& m, bool wedge, std::vector<std::string> imag
   return t;
 }
 
-//! Gives `quads` (as assign_quads(q) made them) the coordinates of `texture` as wedge
-//! texture coordinates into the layer's texture 0. \pre `quads` has them enabled.
+//! Gives `quads` (as assign_quads(q, split) made them) the coordinates of `texture` as
+//! wedge texture coordinates into the layer's texture 0. \pre `quads` has them enabled.
 template <class CMesh>
-void assign_texture(CMesh& quads, const QuadMesh& q, const QuadTexture& texture) {
-  const std::vector<std::uint8_t> split = split_diagonals(q);
+void assign_texture(CMesh& quads, const QuadMesh& q, const std::vector<std::uint8_t>& split,
+                    const QuadTexture& texture) {
   std::size_t f = 0;
   for (Index face = 0; face < q.face_capacity(); ++face) {
     if (!q.is_face_live(face)) continue;

@@ -118,7 +118,7 @@ TYPED_TEST(PluginLayer, texture_coordinates_follow_the_quads_corners) {
   Layer<TypeParam> layer;
   assign_quads(layer, q);
   layer.face.EnableWedgeTexCoord();
-  assign_texture(layer, q, t);
+  assign_texture(layer, q, split, t);
   const FileTexture back = texture_of(layer, true, {"atlas"});
   ASSERT_EQ(back.triangles.size(), 2 * std::size_t(q.n_faces()));
   EXPECT_EQ(back.images, std::vector<std::string>{"atlas"});
@@ -474,7 +474,7 @@ TEST(PluginRunner, simplification_logs_what_it_did_and_matches_the_pipeline) {
   SimplifyParams params;
   params.target_faces = 120;
   Outcome o;
-  const QuadMesh q = run_simplification(layer, "ball", params, {}, o);
+  const QuadMesh q = run_simplification(layer, "ball", params, {}, o).mesh;
   EXPECT_LE(q.n_faces(), 120u);
   EXPECT_EQ(o.values.at("faces"), q.n_faces());
   ASSERT_GE(o.log.size(), 2u);
@@ -490,7 +490,7 @@ TEST(PluginRunner, simplification_logs_what_it_did_and_matches_the_pipeline) {
   // A share of the quads the layer converts to, in place of the count.
   params.target_faces = 0, params.target_share = 0.25;
   Outcome share;
-  const Index shared = run_simplification(layer, "ball", params, {}, share).n_faces();
+  const Index shared = run_simplification(layer, "ball", params, {}, share).mesh.n_faces();
   EXPECT_EQ(shared, Index(std::lround(0.25 * double(prepare_input(layer, "ball").quads.n_faces()))));
   params.target_share = 0;
 
@@ -505,7 +505,7 @@ TEST(PluginRunner, simplification_logs_what_it_did_and_matches_the_pipeline) {
 
   // Conversion alone: the layer's triangles as quads, and how many paired.
   Outcome c;
-  const QuadMesh converted = run_conversion(layer, "ball", c);
+  const QuadMesh converted = run_conversion(layer, "ball", c).mesh;
   EXPECT_EQ(c.values.at("faces"), converted.n_faces());
   EXPECT_GT(c.values.at("pairing_rate"), 0.9);
   EXPECT_NO_THROW(validate(converted));
