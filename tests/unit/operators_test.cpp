@@ -15,6 +15,7 @@
 #include "quadsimp/ops/cleaning.h"
 #include "quadsimp/ops/diagonal_collapse.h"
 #include "quadsimp/ops/doublet.h"
+#include "quadsimp/ops/doublet_collapse.h"
 #include "quadsimp/ops/edge_rotation.h"
 #include "quadsimp/ops/singlet.h"
 #include "quadsimp/util/errors.h"
@@ -319,6 +320,62 @@ TEST(Doublet, pillow_is_refused) {
   validate(m);
   EXPECT_TRUE(is_doublet(m, 0));
   EXPECT_FALSE(can_remove_doublet(m, 0));
+}
+
+TEST(DoubletCollapse, a_vertex_rotated_down_to_two_faces_goes_with_two_segments) {
+  // A crease along the middle row of a 4 x 2 grid; its vertex 7 between 6 and 8 is taken out.
+  QuadMesh m = quad_grid(4, 2);
+  const Index b = 7;
+  const Index up = halfedge_between(m, b, 12);
+  ASSERT_TRUE(can_rotate_edge(m, up, Rotation::Ccw));
+  rotate_edge(m, up, Rotation::Ccw);
+  validate(m);
+  // Rotations make no doublet, unless told where one may be.
+  const Index down = halfedge_between(m, b, 2);
+  ASSERT_NE(down, kNone);
+  EXPECT_FALSE(can_rotate_edge(m, down, Rotation::Ccw));
+  EXPECT_FALSE(can_rotate_edge(m, down, Rotation::Cw));
+  ASSERT_TRUE(can_rotate_edge(m, down, Rotation::Ccw, b));
+  EXPECT_FALSE(can_rotate_edge(m, down, Rotation::Ccw, 6));  // another vertex named
+  rotate_edge(m, down, Rotation::Ccw, b);
+  validate(m);
+  ASSERT_TRUE(is_doublet(m, b));
+  const DoubletCorners c = doublet_corners(m, b);
+  EXPECT_EQ(std::minmax(c.p, c.r), std::minmax(Index(6), Index(8)));
+  ASSERT_TRUE(can_collapse_doublet(m, b));
+  const int valence = m.valence(c.p) + m.valence(c.r) - 4;
+  const Index faces = m.n_faces(), vertices = m.n_vertices();
+  const Index v = collapse_doublet(m, b, m.position(b));
+  validate(m);
+  EXPECT_EQ(v, c.p);
+  EXPECT_EQ(m.valence(v), valence);
+  EXPECT_EQ(m.n_faces(), faces - 2);
+  EXPECT_EQ(m.n_vertices(), vertices - 2);
+  EXPECT_EQ(m.position(v), Vec3(2, 1, 0));
+  EXPECT_TRUE(shared_diagonals(m).empty());
+  // The crease runs 5 - v - 9 now, by edges.
+  EXPECT_NE(halfedge_between(m, v, 5), kNone);
+  EXPECT_NE(halfedge_between(m, v, 9), kNone);
+}
+
+TEST(DoubletCollapse, refusals_and_a_doublet_inside_a_grid) {
+  QuadMesh g = quad_grid(3, 3);
+  EXPECT_FALSE(can_collapse_doublet(g, 5));  // no doublet
+  std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  EXPECT_FALSE(can_collapse_doublet(QuadMesh::from_faces(p, {{0, 1, 2, 3}, {0, 3, 2, 1}}), 0));  // the pillow
+  // A doublet whose two neighbours are on the border: the merge would pinch it.
+  std::vector<Vec3> q = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {1, 1, 0}};
+  const QuadMesh pinch = QuadMesh::from_faces(q, {{4, 3, 0, 1}, {4, 1, 2, 3}});
+  ASSERT_TRUE(is_doublet(pinch, 4));
+  EXPECT_FALSE(can_collapse_doublet(pinch, 4));
+  // Inside a grid: its neighbours 5 and 10 merge, and the grid keeps every invariant.
+  Index s;
+  QuadMesh m = grid_with_doublet(&s);
+  ASSERT_TRUE(can_collapse_doublet(m, s));
+  collapse_doublet(m, s, m.position(s));
+  validate(m);
+  EXPECT_EQ(m.n_faces(), 8u);
+  EXPECT_TRUE(shared_diagonals(m).empty());
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 
+#include "quadsimp/reference/creases.h"
 #include "quadsimp/util/errors.h"
 
 namespace qs {
@@ -36,27 +37,42 @@ double quad_quality(const std::vector<Vec3>& p, const std::array<Index, 4>& q) {
   return s / 4;
 }
 
-// Splits the longest border edge of every component with an odd triangle count;
-// `adj` (t's triangle adjacency) is brought up to date when it does.
-Index fix_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj) {
-  std::vector<Index> comp;
-  const Index nc = face_components(adj, comp);
-  std::vector<Index> count(nc, 0);
-  for (Index c : comp) ++count[c];
-  if (std::all_of(count.begin(), count.end(), [](Index n) { return n % 2 == 0; })) return 0;
-  std::vector<std::pair<double, Index>> best(nc, {-1.0, kNone});  // (length, 3*face+k)
+// Per component (`comp`, with `count` triangles each), its longest border edge (3 * face +
+// corner) when its triangle count is odd, else kNone: where fix_parity() splits it.
+std::vector<Index> longest_odd_border(const TriMesh& t, const std::vector<std::array<Index, 3>>& adj,
+                                      const std::vector<Index>& comp, const std::vector<Index>& count) {
+  std::vector<std::pair<double, Index>> best(count.size(), {-1.0, kNone});  // (length, 3*face+k)
   for (Index f = 0; f < t.n_faces(); ++f)
     for (Index k = 0; k < 3; ++k) {
       if (adj[f][k] != kNone || count[comp[f]] % 2 == 0) continue;
       const double len = (t.positions[t.faces[f][k]] - t.positions[t.faces[f][(k + 1) % 3]]).norm();
       if (len > best[comp[f]].first) best[comp[f]] = {len, 3 * f + k};
     }
+  std::vector<Index> edge(count.size());
+  for (std::size_t c = 0; c < count.size(); ++c) edge[c] = best[c].second;
+  return edge;
+}
+
+// Triangles per component.
+std::vector<Index> component_sizes(const std::vector<Index>& comp, Index nc) {
+  std::vector<Index> count(nc, 0);
+  for (Index c : comp) ++count[c];
+  return count;
+}
+
+// Splits the longest border edge of every component with an odd triangle count;
+// `adj` (t's triangle adjacency) is brought up to date when it does.
+Index fix_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj) {
+  std::vector<Index> comp;
+  const std::vector<Index> count = component_sizes(comp, face_components(adj, comp));
+  if (std::all_of(count.begin(), count.end(), [](Index n) { return n % 2 == 0; })) return 0;
+  const std::vector<Index> longest = longest_odd_border(t, adj, comp, count);
   Index splits = 0;
-  for (Index c = 0; c < nc; ++c) {
+  for (std::size_t c = 0; c < count.size(); ++c) {
     if (count[c] % 2 == 0) continue;
     // An odd closed component cannot exist (3F = 2E); clean() guarantees manifoldness.
-    if (best[c].second == kNone) throw TopologyError("tri_to_quad: odd closed component");
-    const Index f = best[c].second / 3, k = best[c].second % 3;
+    if (longest[c] == kNone) throw TopologyError("tri_to_quad: odd closed component");
+    const Index f = longest[c] / 3, k = longest[c] % 3;
     const auto tri = t.faces[f];
     const Index a = tri[k], b = tri[(k + 1) % 3], apex = tri[(k + 2) % 3];
     const Index m = t.n_vertices();
@@ -69,11 +85,100 @@ Index fix_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj) {
   return splits;
 }
 
+// With creases, the parts between them must each pair up on their own: every part but
+// the one fix_parity() splits a border edge of is made even. Splitting a crease edge at
+// its midpoint adds a triangle on both sides, so the oddness of a part is handed across a
+// crease to its neighbour: along a tree of the parts of each component, from the leaves
+// to the root, which is the part holding the border edge fix_parity() will split (any
+// part, where the component is closed and so even). Returns the crease edges split.
+Index fix_crease_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj, double crease_angle_deg) {
+  const std::vector<char> crease = crease_edges(t, adj, crease_angle_deg);
+  if (std::find(crease.begin(), crease.end(), 1) == crease.end()) return 0;
+  auto edge_to = [&](Index f, Index g) {
+    Index k = 0;
+    while (adj[f][k] != g) ++k;
+    return 3 * f + k;
+  };
+  std::vector<Index> part, comp;
+  const Index parts = face_components(adj, part, [&](Index f, Index g) { return !crease[edge_to(f, g)]; });
+  const Index nc = face_components(adj, comp);
+  const std::vector<Index> longest = longest_odd_border(t, adj, comp, component_sizes(comp, nc));
+  std::vector<char> odd(parts, 0);
+  for (Index p : part) odd[p] ^= 1;
+  // Each part's neighbours across creases, with a crease edge between them.
+  std::vector<std::vector<std::pair<Index, Index>>> next(parts);
+  for (Index f = 0; f < t.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k) {
+      const Index g = adj[f][k];
+      if (g == kNone || g < f || !crease[3 * f + k] || part[f] == part[g]) continue;
+      next[part[f]].push_back({part[g], 3 * f + k});
+      next[part[g]].push_back({part[f], 3 * f + k});
+    }
+  std::vector<Index> root(nc, kNone);
+  for (Index c = 0; c < nc; ++c)
+    if (longest[c] != kNone) root[c] = part[longest[c] / 3];
+  // Breadth first from each component's root (its first face's part where it has none).
+  std::vector<Index> order, parent(parts, kNone), parent_edge(parts, kNone);
+  std::vector<char> seen(parts, 0);
+  for (Index f = 0; f < t.n_faces(); ++f) {
+    Index& r = root[comp[f]];
+    if (r == kNone) r = part[f];
+    if (seen[r]) continue;
+    seen[r] = 1;
+    std::size_t head = order.size();
+    order.push_back(r);
+    for (; head < order.size(); ++head)
+      for (const auto& [q, e] : next[order[head]])
+        if (!seen[q]) seen[q] = 1, parent[q] = order[head], parent_edge[q] = e, order.push_back(q);
+  }
+  // The crease edges to split, as directed vertex pairs of the triangle holding each.
+  std::vector<std::pair<Index, Index>> cut;
+  for (std::size_t i = order.size(); i-- > 0;) {
+    const Index q = order[i];
+    if (!odd[q] || parent[q] == kNone) continue;
+    const Index e = parent_edge[q];
+    cut.push_back({t.faces[e / 3][e % 3], t.faces[e / 3][(e % 3 + 1) % 3]});
+    odd[q] = 0, odd[parent[q]] ^= 1;
+  }
+  if (cut.empty()) return 0;
+  // An earlier split may have moved a later one's edge to a new triangle: the triangle
+  // holding each directed edge to split is looked up, and kept up to date.
+  std::map<std::pair<Index, Index>, Index> holder;
+  for (const auto& [u, w] : cut) holder[{u, w}] = holder[{w, u}] = kNone;
+  for (Index f = 0; f < t.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k)
+      if (auto it = holder.find({t.faces[f][k], t.faces[f][(k + 1) % 3]}); it != holder.end()) it->second = f;
+  for (const auto& [u, w] : cut) {
+    const Index m = t.n_vertices();
+    t.positions.push_back(0.5 * (t.positions[u] + t.positions[w]));
+    for (const auto& [a, b] : {std::pair<Index, Index>{u, w}, std::pair<Index, Index>{w, u}}) {
+      const Index f = holder.at({a, b});
+      Index k = 0;
+      while (t.faces[f][k] != a) ++k;
+      const Index c = t.faces[f][(k + 2) % 3];
+      t.faces[f] = {a, m, c};
+      t.faces.push_back({m, b, c});
+      if (auto it = holder.find({b, c}); it != holder.end()) it->second = t.n_faces() - 1;
+    }
+  }
+  adj = triangle_adjacency(t);
+  return Index(cut.size());
+}
+
 // Re-pairs along the shortest alternating path from the free triangle u to another
 // free triangle (an augmenting path of the dual graph's matching).
 // With `to_border`, the search instead ends at the first triangle y with a border
 // edge: the path is re-paired so that y is the one left free, and y is returned
 // (kNone when nothing was found; u itself when the plain search succeeded).
+// `adj` has no neighbour across a crease; `crease` (empty without creases) tells those
+// edges from the border.
+// The first of triangle y's edges on the border, 3 if none.
+Index border_edge(const std::vector<std::array<Index, 3>>& adj, const std::vector<char>& crease, Index y) {
+  Index k = 0;
+  while (k < 3 && (adj[y][k] != kNone || (!crease.empty() && crease[3 * y + k]))) ++k;
+  return k;
+}
+
 struct Search {
   std::vector<Index> seen, via, from, queue;
   Index stamp = 0;
@@ -95,14 +200,14 @@ void flip_path(Index u, Index x, Index partner, std::vector<Index>& mate, const 
 }
 
 Index augment(Index u, const std::vector<std::array<Index, 3>>& adj, std::vector<Index>& mate,
-              Search& s, Index max_search, bool to_border) {
+              Search& s, Index max_search, bool to_border, const std::vector<char>& crease) {
   const Index stamp = ++s.stamp;
   s.queue.clear();
   s.queue.push_back(u);
   s.seen[u] = stamp;
   for (std::size_t head = 0; head < s.queue.size() && s.queue.size() < max_search; ++head) {
     const Index y = s.queue[head];
-    if (to_border && (adj[y][0] == kNone || adj[y][1] == kNone || adj[y][2] == kNone)) {
+    if (to_border && border_edge(adj, crease, y) < 3) {
       if (y != u) {
         const Index t = s.via[y];
         mate[y] = kNone;
@@ -156,10 +261,15 @@ Index pair_through_blossoms(const std::vector<std::array<Index, 3>>& adj, std::v
 }
 
 // Splits the border edge of triangle y at its midpoint; the two halves pair up.
-void split_border_and_pair(TriMesh& t, std::vector<std::array<Index, 3>>& adj, std::vector<Index>& mate,
-                           Index y) {
-  Index k = 0;
-  while (adj[y][k] != kNone) ++k;
+void split_border_and_pair(TriMesh& t, std::vector<std::array<Index, 3>>& adj, std::vector<char>& crease,
+                           std::vector<Index>& mate, Index y) {
+  const Index k = border_edge(adj, crease, y);
+  if (!crease.empty()) {
+    // The halves (a, m, c) and (m, b, c) keep the crease marks of c-a and b-c.
+    const char bc = crease[3 * y + (k + 1) % 3], ca = crease[3 * y + (k + 2) % 3];
+    crease[3 * y] = 0, crease[3 * y + 1] = 0, crease[3 * y + 2] = ca;
+    crease.insert(crease.end(), {0, bc, 0});
+  }
   const auto tri = t.faces[y];
   const Index a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
   const Index n_bc = adj[y][(k + 1) % 3], n_ca = adj[y][(k + 2) % 3];
@@ -211,14 +321,70 @@ QuadMesh refine_mixed(const TriMesh& t, const std::vector<std::array<Index, 3>>&
   return QuadMesh::from_faces(std::move(pos), quads);
 }
 
+// Each pair of triangles across a crease edge u-w, (u, w, a) and (w, u, b), becomes two
+// quads with a new vertex m at the edge's midpoint, (u, m, w, a) and (w, m, u, b): flat,
+// with a straight angle at m, but neither crosses the crease. The simplifier takes m out
+// again with its crease neighbours (ops/doublet_collapse.h). `adj` has no neighbours
+// across creases, `full` does; both and `crease` are kept up to date. Returns the pairs
+// split.
+Index split_pairs_at_creases(TriMesh& t, const std::vector<std::array<Index, 3>>& full,
+                             std::vector<std::array<Index, 3>>& adj, std::vector<char>& crease,
+                             std::vector<Index>& mate) {
+  Index splits = 0;
+  const Index n = t.n_faces();
+  for (Index f = 0; f < n; ++f) {
+    const Index g = mate[f];
+    if (g == kNone || g < f || std::find(adj[f].begin(), adj[f].end(), g) != adj[f].end()) continue;
+    const Index m = t.n_vertices();
+    Index k = 0;
+    while (full[f][k] != g) ++k;
+    t.positions.push_back(0.5 * (t.positions[t.faces[f][k]] + t.positions[t.faces[f][(k + 1) % 3]]));
+    // Each of f and g keeps the half from its edge's start, and a new triangle takes the
+    // other half and pairs with it.
+    for (const Index x : {f, g}) {
+      Index j = 0;
+      while (full[x][j] != (x == f ? g : f)) ++j;
+      const Index a = t.faces[x][j], b = t.faces[x][(j + 1) % 3], c = t.faces[x][(j + 2) % 3];
+      const Index z = t.n_faces(), next = adj[x][(j + 1) % 3], prev = adj[x][(j + 2) % 3];
+      const char next_crease = crease[3 * x + (j + 1) % 3], prev_crease = crease[3 * x + (j + 2) % 3];
+      t.faces[x] = {a, m, c};
+      t.faces.push_back({m, b, c});
+      adj[x] = {kNone, z, prev};
+      adj.push_back({kNone, next, x});
+      if (next != kNone)
+        for (Index& y : adj[next])
+          if (y == x) y = z;
+      crease[3 * x] = 1, crease[3 * x + 1] = 0, crease[3 * x + 2] = prev_crease;
+      crease.insert(crease.end(), {1, next_crease, 0});
+      mate[x] = z;
+      mate.push_back(x);
+    }
+    ++splits;
+  }
+  return splits;
+}
+
 }  // namespace
 
 QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertReport* report) {
   TriMesh t = input;
   ConvertReport r;
   auto adj = triangle_adjacency(t);
+  r.crease_splits = fix_crease_parity(t, adj, opt.crease_angle_deg);
   r.parity_splits = fix_parity(t, adj);
   r.input_triangles = t.n_faces();
+  // From here on no triangle is a neighbour across a crease, so none is paired there;
+  // `full` keeps the neighbours across creases.
+  std::vector<char> crease;
+  std::vector<std::array<Index, 3>> full;
+  if (r.crease_splits > 0 || opt.crease_angle_deg > 0) {
+    crease = crease_edges(t, adj, opt.crease_angle_deg);
+    if (std::find(crease.begin(), crease.end(), 1) == crease.end()) crease.clear();
+    if (!crease.empty()) full = adj;
+    for (Index f = 0; f < t.n_faces() && !crease.empty(); ++f)
+      for (Index k = 0; k < 3; ++k)
+        if (crease[3 * f + k]) adj[f][k] = kNone;
+  }
 
   // Greedy matching, best candidate first; ties broken by ids for determinism. Its
   // candidates and normals go at the end of the block, before the searches' and the
@@ -254,28 +420,57 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
 
   Search search;
   search.resize(t.n_faces());
-  for (Index f = 0; f < t.n_faces(); ++f) {
-    // Breadth-first alternating search misses paths through odd cycles (it does not
-    // shrink blossoms); moving the free triangle one step and searching again gets
-    // around them in practice.
-    Index free = f;
-    for (Index attempt = 0; mate[free] == kNone && attempt < opt.max_moves; ++attempt) {
-      if (augment(free, adj, mate, search, opt.max_search, false) != kNone) {
-        r.paired_augmented += 2;
-        break;
+  const auto leftover = [&] { return std::find(mate.begin(), mate.end(), kNone) != mate.end(); };
+  const auto pair_leftovers = [&](const std::vector<std::array<Index, 3>>& a) {
+    for (Index f = 0; f < t.n_faces(); ++f) {
+      // Breadth-first alternating search misses paths through odd cycles (it does not
+      // shrink blossoms); moving the free triangle one step and searching again gets
+      // around them in practice.
+      Index free = f;
+      for (Index attempt = 0; mate[free] == kNone && attempt < opt.max_moves; ++attempt) {
+        if (augment(free, a, mate, search, opt.max_search, false, crease) != kNone) {
+          r.paired_augmented += 2;
+          break;
+        }
+        const Index t2 = a[free][attempt % 3];
+        if (t2 == kNone || mate[t2] == kNone) continue;
+        const Index freed = mate[t2];
+        mate[t2] = free;
+        mate[free] = t2;
+        mate[freed] = kNone;
+        free = freed;
       }
-      const Index t2 = adj[free][attempt % 3];
-      if (t2 == kNone || mate[t2] == kNone) continue;
-      const Index freed = mate[t2];
-      mate[t2] = free;
-      mate[free] = t2;
-      mate[freed] = kNone;
-      free = freed;
     }
-  }
-  if (std::find(mate.begin(), mate.end(), kNone) != mate.end()) {
-    r.paired_blossoms = pair_through_blossoms(adj, mate);
-    r.paired_augmented += r.paired_blossoms;
+    if (leftover()) {
+      const Index paired = pair_through_blossoms(a, mate);
+      r.paired_blossoms += paired;
+      r.paired_augmented += paired;
+    }
+  };
+  pair_leftovers(adj);
+  if (!crease.empty() && leftover()) {
+    // Even in number, a part between creases may still have no pairing of its own (the
+    // cells of a grid, split in two one way, with a triangle added at two places). Its
+    // leftovers pair across creases, and each such pair is split at the crease into two
+    // quads (crease_midpoints()).
+    // Not at crease edges that end where creases meet or end, if it can be helped: the
+    // simplifier keeps such a vertex where it is, and the flat quads beside it do not
+    // always go then (the faces around the other end would have to reach that vertex).
+    std::vector<char> corner(t.n_vertices(), 0);
+    for (Index f = 0; f < t.n_faces(); ++f)
+      for (Index k = 0; k < 3; ++k)
+        if (crease[3 * f + k] && full[f][k] > f) ++corner[t.faces[f][k]], ++corner[t.faces[f][(k + 1) % 3]];
+    std::vector<std::array<Index, 3>> away = full;
+    for (Index f = 0; f < t.n_faces(); ++f)
+      for (Index k = 0; k < 3; ++k)
+        if (crease[3 * f + k] && (corner[t.faces[f][k]] != 2 || corner[t.faces[f][(k + 1) % 3]] != 2))
+          away[f][k] = kNone;
+    pair_leftovers(away);
+    if (leftover()) pair_leftovers(full);
+    r.crease_midpoints = split_pairs_at_creases(t, full, adj, crease, mate);
+    r.input_triangles += 2 * r.crease_midpoints;
+    r.paired_augmented += 2 * r.crease_midpoints;
+    search.resize(t.n_faces());
   }
   // Some meshes have no perfect matching at all (two "ears" hanging off one
   // triangle at a border). Carry each leftover to the border and split a border
@@ -283,9 +478,9 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
   const Index n_before = t.n_faces();
   for (Index f = 0; f < n_before; ++f) {
     if (mate[f] != kNone) continue;
-    const Index y = augment(f, adj, mate, search, opt.max_search, true);
+    const Index y = augment(f, adj, mate, search, opt.max_search, true, crease);
     if (y == kNone) continue;
-    split_border_and_pair(t, adj, mate, y);
+    split_border_and_pair(t, adj, crease, mate, y);
     search.resize(t.n_faces());
     ++r.border_splits;
     r.paired_augmented += 1;

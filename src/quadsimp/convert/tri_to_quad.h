@@ -13,11 +13,19 @@ struct ConvertOptions {
   Index max_search = 1u << 20;
   //! Times a leftover triangle is moved to a neighbour to retry the search.
   Index max_moves = 64;
+  //! Triangles are never paired across an edge sharper than this (degrees; 0: no such
+  //! edges), so that every crease (reference/creases.h, the same angle) is an edge of the
+  //! quads, and the simplifier can keep it.
+  double crease_angle_deg = 0;
 };
 
 struct ConvertReport {
   Index input_triangles = 0;   //!< after the parity splits
   Index parity_splits = 0;     //!< border edges split so that every component is even
+  Index crease_splits = 0;     //!< crease edges split so that every part between creases is even
+  //! Pairs left across a crease, where a part between creases had no pairing of its own,
+  //! split at their crease edge's midpoint into two flat quads, one on either side.
+  Index crease_midpoints = 0;
   Index paired_greedy = 0;     //!< triangles paired by the greedy pass
   Index paired_augmented = 0;  //!< triangles paired by re-pairing along paths
   Index paired_blossoms = 0;   //!< of those, paired by Edmonds' algorithm after the searches
@@ -33,7 +41,12 @@ struct ConvertReport {
 //! Converts a clean triangle mesh (see clean()) into a pure quad mesh.
 //!
 //! 1. Per component with an odd triangle count, its longest border edge is split at
-//!    its midpoint (a closed component is always even).
+//!    its midpoint (a closed component is always even). With creases, the parts between
+//!    them are made even first, by splitting crease edges between parts (the triangles
+//!    on both sides), so that the only odd part left is the one holding that border edge;
+//!    no pair is then made across a crease. Where a part has no pairing of its own even
+//!    so, its leftovers pair across creases, and each such pair is split at its crease
+//!    edge's midpoint into two quads, one on either side, flat with a straight angle there.
 //! 2. Greedy matching of adjacent triangles, best quad first (score: mean over the
 //!    corners of 1-|cos angle|; non-convex or strongly bent pairs are not merged).
 //! 3. Each leftover triangle is paired by re-pairing along the shortest alternating

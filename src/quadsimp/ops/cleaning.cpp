@@ -6,7 +6,8 @@
 
 namespace qs {
 
-void clean_from(QuadMesh& m, std::vector<Index>& work, CleanCounts& counts, std::vector<Index>* changed) {
+void clean_from(QuadMesh& m, std::vector<Index>& work, CleanCounts& counts, std::vector<Index>* changed,
+                const std::vector<char>* keep) {
   while (!work.empty()) {
     const Index v = work.back();
     work.pop_back();
@@ -20,7 +21,7 @@ void clean_from(QuadMesh& m, std::vector<Index>& work, CleanCounts& counts, std:
         work.push_back(x);
         if (changed) m.for_each_outgoing(p, [&](Index e) { changed->push_back(QuadMesh::face(e)); });
       }
-    } else if (can_remove_doublet(m, v)) {
+    } else if (!(keep && (*keep)[v]) && can_remove_doublet(m, v)) {
       const Index h = m.out(v);
       const Index p = m.to(h), r = m.to(m.rotate(h));
       const Index f = remove_doublet(m, v);
@@ -32,12 +33,12 @@ void clean_from(QuadMesh& m, std::vector<Index>& work, CleanCounts& counts, std:
   }
 }
 
-CleanCounts clean_all(QuadMesh& m) {
+CleanCounts clean_all(QuadMesh& m, const std::vector<char>* keep) {
   CleanCounts counts;
   std::vector<Index> work;
   for (Index v = m.vertex_capacity(); v-- > 0;)
     if (m.is_vertex_live(v)) work.push_back(v);
-  clean_from(m, work, counts);
+  clean_from(m, work, counts, nullptr, keep);
   return counts;
 }
 

@@ -44,21 +44,25 @@ std::array<Index, 2> rotated_edge(const QuadMesh& m, Index h, Rotation r) {
   return r == Rotation::Ccw ? std::array<Index, 2>{x.x1, x.y1} : std::array<Index, 2>{x.x2, x.y2};
 }
 
-bool can_rotate_edge(const QuadMesh& m, Index h, Rotation r) {
+bool can_rotate_edge(const QuadMesh& m, Index h, Rotation r, Index doublet) {
   if (h >= m.halfedge_capacity() || !m.is_face_live(QuadMesh::face(h)) || m.twin(h) == kNone) return false;
   const Hexagon x = hexagon(m, h);
   if (x.f1 == x.f2) return false;
   std::array<Index, 6> c = {x.u, x.w, x.x1, x.x2, x.y1, x.y2};
   std::sort(c.begin(), c.end());
   if (std::adjacent_find(c.begin(), c.end()) != c.end()) return false;
-  if (m.valence(x.u) - 1 < min_valence(m, x.u) || m.valence(x.w) - 1 < min_valence(m, x.w)) return false;
+  auto least = [&](Index v) { return v == doublet ? 2 : min_valence(m, v); };
+  if (m.valence(x.u) - 1 < least(x.u) || m.valence(x.w) - 1 < least(x.w)) return false;
   // The new edge would be doubled. Two corners that end up opposite in a new face and
   // already share another face would make two quads touch at two corners without the
   // edge between them (see shared_diagonals).
   const Index p = r == Rotation::Ccw ? x.x1 : x.x2, q = r == Rotation::Ccw ? x.y1 : x.y2;
   if (share_a_face(m, p, q, x.f1, x.f2)) return false;
-  for (const auto& n : rotated_faces(m, h, r))
+  for (const auto& n : rotated_faces(m, h, r)) {
+    // A doublet's two faces have the same opposite corners, its neighbours.
+    if (doublet != kNone && std::find(n.begin(), n.end(), doublet) != n.end()) continue;
     if (share_a_face(m, n[0], n[2], x.f1, x.f2) || share_a_face(m, n[1], n[3], x.f1, x.f2)) return false;
+  }
   return true;
 }
 
@@ -81,8 +85,8 @@ bool rotation_folds(const QuadMesh& m, Index h, Rotation r, Index except, bool b
   return false;
 }
 
-void rotate_edge(QuadMesh& m, Index h, Rotation r) {
-  assert(can_rotate_edge(m, h, r));
+void rotate_edge(QuadMesh& m, Index h, Rotation r, Index doublet) {
+  assert(can_rotate_edge(m, h, r, doublet));
   const Hexagon x = hexagon(m, h);
   const Index g = m.twin(h);
   const std::array<Index, 6> outer = {m.twin(QuadMesh::next(h)), m.twin(QuadMesh::opposite_in_face(h)),

@@ -31,8 +31,11 @@ std::array<Index, 2> rotated_edge(const QuadMesh& mesh, Index h, Rotation r);
 //! corners are not distinct; the new endpoints already share a face outside the
 //! pair (the edge would be doubled); two corners that become opposite in a new face
 //! already share a face outside the pair (see shared_diagonals); u or w would
-//! drop below valence 3 inside or 2 on the border (rotations never make doublets).
-bool can_rotate_edge(const QuadMesh& mesh, Index h, Rotation r);
+//! drop below valence 3 inside or 2 on the border (rotations never make doublets), but
+//! `doublet` may drop to 2, and its faces' opposite corners may share its other face:
+//! crease coarsening makes a doublet there, which it collapses next
+//! (ops/doublet_collapse.h).
+bool can_rotate_edge(const QuadMesh& mesh, Index h, Rotation r, Index doublet = kNone);
 
 //! The two faces after the rotation (in the slots of f1 and f2), without changing
 //! the mesh: for energy and geometric checks.
@@ -45,7 +48,8 @@ std::array<std::array<Index, 4>, 2> rotated_faces(const QuadMesh& mesh, Index h,
 //! ear removal rotates an edge to make an ear that it collapses right away.
 bool rotation_folds(const QuadMesh& mesh, Index h, Rotation r, Index except = kNone, bool bends = false);
 
-//! Performs the rotation in place (faces keep their ids). \pre can_rotate_edge.
-void rotate_edge(QuadMesh& mesh, Index h, Rotation r);
+//! Performs the rotation in place (faces keep their ids). \pre can_rotate_edge (with the
+//! same `doublet`).
+void rotate_edge(QuadMesh& mesh, Index h, Rotation r, Index doublet = kNone);
 
 }  // namespace qs

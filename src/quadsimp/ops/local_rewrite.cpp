@@ -48,7 +48,7 @@ void face_neighbours(const QuadMesh& m, Index v, std::vector<Index>& out) {
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
-bool link_condition(const QuadMesh& m, Index a, Index c, Index b, Index d) {
+bool link_condition(const QuadMesh& m, Index a, Index c, Index b, Index d, Index e) {
   thread_local std::vector<Index> na, nc;
   face_neighbours(m, a, na);
   face_neighbours(m, c, nc);
@@ -59,11 +59,11 @@ bool link_condition(const QuadMesh& m, Index a, Index c, Index b, Index d) {
     } else if (nc[j] < na[i]) {
       ++j;
     } else {
-      if (na[i] != b && na[i] != d) return false;
+      if (na[i] != b && na[i] != d && na[i] != e) return false;
       ++common, ++i, ++j;
     }
   }
-  return common == 2;
+  return common == (e == kNone ? 2u : 3u);
 }
 
 }  // namespace qs::detail

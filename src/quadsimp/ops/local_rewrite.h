@@ -19,7 +19,8 @@ void rewrite_faces(QuadMesh& m, const Index* faces, const std::array<Index, 4>* 
 void face_neighbours(const QuadMesh& m, Index v, std::vector<Index>& out);
 
 //! Quad link condition for merging a and c: the vertices sharing a face with a and
-//! those sharing a face with c are exactly {b, d} in common.
-bool link_condition(const QuadMesh& m, Index a, Index c, Index b, Index d);
+//! those sharing a face with c are exactly {b, d} in common, and e too when given (a
+//! vertex whose faces go before the merge: a doublet's, for doublet_collapse.h).
+bool link_condition(const QuadMesh& m, Index a, Index c, Index b, Index d, Index e = kNone);
 
 }  // namespace qs::detail

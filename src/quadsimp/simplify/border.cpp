@@ -57,6 +57,7 @@ double Simplifier::border_turn(Index v) const {
 // the pinned ones: over 16 face counts from 2K to 13K, 13 runs ended with an edge under
 // 0.5 mu, 4 with this rule. Pinning nothing loses the square's corners.
 bool Simplifier::is_border_corner(Index v) const {
+  if (held_[v]) return true;  // where a crease meets the border
   const double t = border_turn(v);
   if (t <= M_PI / 4) return false;
   // A piece of one quad: its corners all turn alike and pass neither test below, and the
@@ -135,7 +136,7 @@ bool Simplifier::remove_border_vertex(Index b) {
   const Index a = m_.from(ha), c = m_.to(out);
   const double ab = (m_.position(a) - m_.position(b)).norm(), bc = (m_.position(b) - m_.position(c)).norm();
   const int valence = m_.valence(b);
-  if (ab + bc >= kBorderShort * mu_at(b) || valence > 3) return false;
+  if (ab + bc >= kBorderShort * mu_at(b) || valence > 3 || pinned(b)) return false;
   // a, b and c merge into one vertex, at b unless a or c is a corner.
   Index corner;
   if (!border_merge_corner(a, c, corner)) return false;
@@ -214,7 +215,7 @@ void Simplifier::inset_border() {
   };
   std::vector<Start> border;
   for (Index v = 0; v < m_.vertex_capacity(); ++v) {
-    if (!m_.is_vertex_live(v) || !m_.is_border_vertex(v)) continue;
+    if (!m_.is_vertex_live(v) || !m_.is_border_vertex(v) || pinned(v)) continue;
     const Vec3& p = m_.position(v);
     const Vec3 along = m_.position(m_.next_on_border(v)) - m_.position(m_.prev_on_border(v));
     Vec3 across = foot_normal_[v].cross(along);

@@ -84,13 +84,24 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
   // wide: on a ribbon every chord was refused); otherwise the midpoint projected onto M0.
   chord_pos_.resize(pairs);
   chord_feet_.resize(pairs);
+  chord_crease_s_.assign(crease_.empty() ? 0 : pairs, -1.0);
   for (Index i = 0; i < pairs; ++i) {
     const Index l = chord.left[i], r = chord.right[i];
     const bool bl = m_.is_border_vertex(l), br = m_.is_border_vertex(r);
     const Vec3 mid = 0.5 * (m_.position(l) + m_.position(r));
     SurfacePoint foot;
     Index tip;
-    if (!merge_keeps_tip(l, r, tip)) {
+    if (!crease_.empty() && crease_[l] != kNone && crease_[l] == crease_[r]) {
+      // A crease edge crossed: its ends meet on the curve (the left one takes the place).
+      if (!place_between_on_crease(l, r, mid, foot, chord_crease_s_[i])) {
+        ++rep_.refused_geometry;
+        return false;
+      }
+      chord_pos_[i] = foot.point;
+      chord_feet_[i] = foot;
+      continue;
+    }
+    if (!merge_keeps_tip(l, r, tip) || (tip != kNone && joins_pinned(tip, tip == l ? r : l))) {
       ++rep_.refused_topology;
       return false;
     }
@@ -136,6 +147,8 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
   collapse_chord(m_, chord, chord_pos_);
   for (Index i = 0; i < pairs; ++i) {
     record_foot(chord.left[i], chord_feet_[i]);
+    if (!crease_.empty() && chord_crease_s_[i] >= 0) crease_s_[chord.left[i]] = chord_crease_s_[i];
+    if (!crease_.empty() && pinned(chord.right[i]) && !pinned(chord.left[i])) inherit(chord.left[i], chord.right[i]);
     held_[chord.left[i]] |= held_[chord.right[i]];
   }
   ++rep_.chord_collapses;

@@ -33,6 +33,7 @@ bool Simplifier::try_rotate(Index h) {
   if (!m_.is_face_live(QuadMesh::face(h)) || m_.twin(h) == kNone) return false;
   const Index g = m_.twin(h);
   const Index u = m_.from(h), w = m_.to(h);
+  if (!crease_.empty() && pinned(u) && pinned(w)) return false;  // a crease's own edge
   const Index x1 = m_.to(QuadMesh::next(h)), x2 = m_.from(QuadMesh::prev(h));
   const Index y1 = m_.to(QuadMesh::next(g)), y2 = m_.from(QuadMesh::prev(g));
   // Energy [paper]: sum over the hexagon of |D(v) - target|. Ties are broken by the sum
@@ -63,7 +64,7 @@ bool Simplifier::try_rotate(Index h) {
   const auto e_second = second == Rotation::Ccw ? e_a : e_b;
   for (Rotation r : {first, second}) {
     if (r == second && e_second >= keep) break;
-    if (!can_rotate_edge(m_, h, r) || rotation_folds(m_, h, r, kNone, refuse_folds_) ||
+    if (!can_rotate_edge(m_, h, r) || creates_pinned_edge(h, r) || rotation_folds(m_, h, r, kNone, refuse_folds_) ||
         !rotation_follows_reference(h, r))
       continue;
     const Index f1 = QuadMesh::face(h), f2 = QuadMesh::face(g);

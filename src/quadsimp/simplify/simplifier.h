@@ -26,6 +26,9 @@ namespace qs::detail {
 // per length, and kept in float).
 inline constexpr double kLeastS = double(std::numeric_limits<float>::min());
 
+// held_'s marks: a tip (SimplifyOptions::keep_tips) and a crease corner (::creases).
+inline constexpr char kHeldTip = 1, kHeldCorner = 2;
+
 // One candidate collapse: diagonal k (corners k, k+2) of `face`, valid while the
 // face's version is unchanged (lazy invalidation).
 struct Entry {
@@ -87,11 +90,14 @@ class Simplifier {
   // A merge of u and w (a collapse's diagonal ends, a chord's pair) keeps a tip's vertex
   // where it is: `tip` is that vertex, or kNone. False when the other is pinned to a
   // place of its own too (a tip, or M0's border): the merge is refused.
+  // Held tips and crease corners, and crease vertices, keep their places the same way
+  // (SimplifyOptions::creases).
   bool merge_keeps_tip(Index u, Index w, Index& tip) const {
-    tip = held_[u] ? u : held_[w] ? w : kNone;
+    tip = pinned(u) ? u : pinned(w) ? w : kNone;
     const Index other = tip == u ? w : u;
-    return tip == kNone || !(held_[other] || m_.is_border_vertex(other));
+    return tip == kNone || !(pinned(other) || m_.is_border_vertex(other));
   }
+  bool pinned(Index v) const { return held_[v] || (!crease_.empty() && crease_[v] != kNone); }
   bool place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const;
   // Adaptive mode's checks on the faces a collapse grows: the M-fitmap, then the reach.
   Verdict check_grown_faces(Index f, Index k, const Vec3& pos, Bound bound) const;
@@ -180,7 +186,10 @@ class Simplifier {
   // Edge rotations (rotations.cpp).
   void rotate_in_region();
   bool try_rotate(Index h);
-  int target_valence(Index v) const { return m_.is_border_vertex(v) ? target_valence_of_border(v) : 4; }
+  int target_valence(Index v) const {
+    if (m_.is_border_vertex(v)) return target_valence_of_border(v);
+    return (held_[v] & kHeldCorner) ? target_valence_of_corner(v) : 4;
+  }
   bool rotation_passes_cap(Index h, Rotation r) const;
   bool rotation_follows_reference(Index h, Rotation r, Index except = kNone) const;
 
@@ -206,6 +215,26 @@ class Simplifier {
   // Poly-chord collapses (chords.cpp).
   bool collapse_chords();
   bool try_collapse_chord(const Chord& chord);
+
+  // Creases (creases.cpp; SimplifyOptions::creases).
+  void mark_creases();
+  void note_crease(Index v) {
+    if (!crease_.empty() && crease_[v] != kNone) crease_verts_.push_back(v);
+  }
+  // `survivor` takes the crease state (curve, place, corner) of `from`.
+  void inherit(Index survivor, Index from);
+  bool joins_pinned(Index keep, Index gone) const;
+  bool creates_pinned_edge(Index h, Rotation r) const;
+  int target_valence_of_corner(Index v) const;
+  void slide_on_crease(Index v, const Vec3& target);
+  // How far crease vertex v may slide along its curve before it meets a neighbour on it.
+  void crease_arc(Index v, double& back, double& ahead) const;
+  bool coarsen_creases();
+  bool remove_crease_vertex(Index b);
+  bool remove_crease_doublet(Index b);
+  bool absorb_far_corners(Index b);
+  bool place_between_on_crease(Index l, Index r, const Vec3& mid, SurfacePoint& foot, double& s) const;
+  void check_creases() const;
 
   // Unfolding (unfolding.cpp).
   void unfold();
@@ -242,6 +271,13 @@ class Simplifier {
   // SimplifyOptions::keep_tips: the vertices held where they are, at tips of M0. A
   // collapse's survivor inherits the mark (both ends held: refused).
   std::vector<char> held_;
+  // With creases: each vertex's curve (kNone off creases and at corners) and parameter on
+  // it, the vertices to look at for crease doublets (coarsen_creases(); some may have left
+  // the creases), and which vertices are on a curve (clean_from() keeps their doublets).
+  std::vector<Index> crease_;
+  std::vector<double> crease_s_;
+  std::vector<Index> crease_verts_, crease_scan_;
+  std::vector<char> on_crease_;
   std::vector<Index> foot_face_;  // the triangle under each vertex: where project_near() starts
   std::vector<Index> centre_foot_;  // adaptive: the triangle under each face's centre at its last key
   // Adaptive mode: the F_S range the priority is clamped to, and the target size of each
@@ -281,6 +317,7 @@ class Simplifier {
   std::vector<Index> beside_;
   std::vector<Vec3> chord_pos_;
   std::vector<SurfacePoint> chord_feet_;
+  std::vector<double> chord_crease_s_;  // with creases: a crease edge's merged place on its curve, else -1
   std::vector<std::size_t> edge_count_;  // per component, for update_mu()
   bool has_border_ = false;  // no operator makes a border where there was none
   double area_ = 0;  // of the mesh at the start

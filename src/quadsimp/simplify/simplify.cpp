@@ -216,6 +216,10 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
 
 Simplifier::Verdict Simplifier::check_collapse(Index f, Index k, Vec3& pos, SurfacePoint& foot, Bound bound) const {
   if (!can_collapse_diagonal(m_, f, k) || touches_kept_border(f, k)) return Verdict::Topology;
+  if (!crease_.empty()) {
+    const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
+    if (joins_pinned(a, c) || joins_pinned(c, a)) return Verdict::Topology;
+  }
   if (exceeds_valence(f, k)) return Verdict::Valence;
   if (!place(f, k, pos, foot)) return Verdict::Geometry;
   return opt_.adaptive ? check_grown_faces(f, k, pos, bound) : Verdict::Ok;
@@ -423,10 +427,12 @@ void Simplifier::requeue_region() {
 }
 
 void Simplifier::cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot) {
-  const Index b = m_.vertex(f, k + 1), d = m_.vertex(f, k + 3);
-  const char held = held_[m_.vertex(f, k)] | held_[m_.vertex(f, k + 2)];
+  const Index b = m_.vertex(f, k + 1), c = m_.vertex(f, k + 2), d = m_.vertex(f, k + 3);
+  const char held = held_[m_.vertex(f, k)] | held_[c];
+  const bool c_kept = pinned(c);  // place() kept c's place (merge_keeps_tip())
   const Index v = collapse_diagonal(m_, f, k, pos);
   held_[v] = held;
+  if (c_kept) inherit(v, c);
   record_foot(v, foot);
   ++rep_.collapses;
   after_change({v, b, d});
@@ -437,7 +443,7 @@ void Simplifier::after_change(const Index* first, const Index* last) {
   region_faces_.clear();
   work_.assign(first, last);
   CleanCounts cc;
-  clean_from(m_, work_, cc, &region_faces_);
+  clean_from(m_, work_, cc, &region_faces_, crease_.empty() ? nullptr : &on_crease_);
   rep_.doublets += cc.doublets;
   rep_.singlets += cc.singlets;
   for (const Index* x = first; x != last; ++x) add_faces_around(*x, region_faces_);
@@ -480,6 +486,7 @@ void Simplifier::check_invariants(bool border_on_m0) const {
     if (m_.is_vertex_live(v) && m_.is_border_vertex(v) && !border_noted_[v])
       throw std::logic_error("simplify: border vertex " + std::to_string(v) + " is not a border-coarsening candidate");
   if (border_on_m0) check_border_on_m0();
+  if (!crease_.empty()) check_creases();
   if (share_.empty()) return;
   std::vector<Index> faces(share_.size(), 0);
   for (Index f = 0; f < m_.face_capacity(); ++f)
@@ -504,7 +511,6 @@ void Simplifier::check_border_on_m0() const {
 // SimplifyOptions::keep_tips. The mesh's vertices are M0's own at the start (the
 // conversion's pairs keep them), so a tip's vertex is the one whose foot is that corner.
 void Simplifier::hold_tips() {
-  held_.assign(m_.vertex_capacity(), 0);
   const double count = opt_.target_faces > 0 ? double(opt_.target_faces) : rep_.predicted_faces;
   if (!opt_.keep_tips || !(count > 0)) return;
   const std::vector<Index> tips = find_tips(ref_.mesh(), tip_options_for(ref_.mesh(), count));
@@ -513,7 +519,7 @@ void Simplifier::hold_tips() {
   for (Index v = 0; v < m_.vertex_capacity(); ++v) {
     if (!m_.is_vertex_live(v) || foot_face_[v] == kNone) continue;
     for (Index u : t.faces[foot_face_[v]])
-      if (t.positions[u] == m_.position(v) && std::binary_search(tips.begin(), tips.end(), u)) held_[v] = 1;
+      if (t.positions[u] == m_.position(v) && std::binary_search(tips.begin(), tips.end(), u)) held_[v] |= kHeldTip;
   }
 }
 
@@ -522,7 +528,10 @@ SimplifyReport Simplifier::run() {
   if (opt_.adaptive && (!opt_.fitmaps || opt_.fitmaps->s.size() != ref_.mesh().n_vertices() ||
                         opt_.fitmaps->m.size() != ref_.mesh().n_vertices()))
     throw std::invalid_argument("simplify: adaptive mode needs fitmaps computed on the reference surface");
-  const CleanCounts initial = clean_all(m_);
+  // Crease vertices are known before the first cleaning, which must keep their doublets.
+  held_.assign(m_.vertex_capacity(), 0);
+  mark_creases();
+  const CleanCounts initial = clean_all(m_, crease_.empty() ? nullptr : &on_crease_);
   rep_.doublets += initial.doublets;
   rep_.singlets += initial.singlets;
   rep_.target_faces = opt_.target_faces;
@@ -559,6 +568,9 @@ SimplifyReport Simplifier::run() {
   if (opt_.check_invariants) check_invariants();
   component_mu_.assign(connected_components(m_, component_), 0.0);
   update_mu();
+  // The conversion's flat quads at crease midpoints (ConvertReport::crease_midpoints) go
+  // first: their shared diagonal is the input's, and a collapse beside one would move it.
+  if (!crease_.empty()) coarsen_creases();
   if (opt_.initial_sweeps > 0) {
     region_faces_.clear();
     for (Index f = 0; f < m_.face_capacity(); ++f)
@@ -645,6 +657,7 @@ SimplifyReport Simplifier::run() {
       }
       if (has_border_ && opt_.coarsen_border && !opt_.preserve_boundary && rep_.collapses % 64 == 0)
         coarsen_border();
+      if (!crease_.empty() && rep_.collapses % 64 == 0) coarsen_creases();
       if (rep_.collapses >= next_mu) {
         // mu drifts slowly: an exact recount every 256 collapses is cheaper than tracking every
         // edge each operation touches, and as accurate, if it comes after at least 2% of the
@@ -665,6 +678,8 @@ SimplifyReport Simplifier::run() {
         }
       }
     }
+    // Crease doublets the last collapses left; their removal may let more collapses pass.
+    if (!crease_.empty() && !halted && !rep_.cancelled && m_.n_faces() > target && coarsen_creases()) continue;
     if (!opt_.chord_collapses || target == 0 || m_.n_faces() <= target || rep_.cancelled || !collapse_chords()) break;
   }
   for (std::size_t c = 0; c < share_.size(); ++c)
@@ -678,7 +693,11 @@ SimplifyReport Simplifier::run() {
   if (has_border_ && opt_.inset_border && !opt_.preserve_boundary && !rep_.cancelled) inset_border();
   if (opt_.adaptive) rep_.beyond_reach = count_beyond_reach();
   if (opt_.check_invariants) check_invariants(rep_.border_insets == 0);  // the inset moves them off on purpose
-  for (Index v = 0; v < m_.vertex_capacity(); ++v) rep_.tips += m_.is_vertex_live(v) && held_[v];
+  for (Index v = 0; v < m_.vertex_capacity(); ++v) {
+    if (!m_.is_vertex_live(v)) continue;
+    rep_.tips += (held_[v] & kHeldTip) != 0;
+    rep_.crease_vertices += !on_crease_.empty() && on_crease_[v];
+  }
   m_.compact();
   rep_.faces = m_.n_faces();
   rep_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

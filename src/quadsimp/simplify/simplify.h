@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "quadsimp/mesh/quad_mesh.h"
+#include "quadsimp/reference/creases.h"
 #include "quadsimp/reference/reference_surface.h"
 #include "quadsimp/util/progress.h"
 
@@ -125,6 +126,17 @@ struct SimplifyOptions {
   //! cow's hooves and teats at 500 quads) can come out further (bench/RESULTS.md,
   //! "Tips kept").
   bool keep_tips = false;
+  //! Keep these creases of the reference surface (reference/creases.h; null or empty:
+  //! none), ours: the paper keeps no feature, and its smoothing rounds sharp edges off.
+  //! The mesh must be converted with the same angle (ConvertOptions::crease_angle_deg),
+  //! so that every crease is a chain of its edges. Crease vertices then slide along their
+  //! curve only and corners stay put; a collapse merging a crease vertex with another
+  //! vertex keeps it where it is, and none merges two (but a doublet collapse, which takes
+  //! two segments out of a crease where a vertex is left with one face on either side,
+  //! and a chord collapse across a crease edge, which merges its ends on the curve); no
+  //! rotation turns an edge between two of them, or makes one; no doublet on a crease is
+  //! removed alone.
+  const Creases* creases = nullptr;
   //! Rotation + smoothing passes after each collapse. The paper does one; a second
   //! one over the smoothed zone gives 3-6 points more regular vertices. It runs only
   //! outside the fine phase (below), so it costs about a fifth more time overall
@@ -188,6 +200,8 @@ struct SimplifyReport {
   Index border_insets = 0;     //!< border vertices moved inwards (inset_border)
   Index tips = 0;              //!< vertices still held at tips of the input at the end (keep_tips)
   Index chord_collapses = 0;   //!< poly-chord collapses (chord_collapses)
+  Index crease_collapses = 0;  //!< doublet collapses on creases (creases)
+  Index crease_vertices = 0;   //!< vertices on creases at the end, corners included (creases)
   Index rotations = 0;
   Index unfolds = 0;  //!< rotations and corner moves that unfolded a quad (or bent it less) at the end
   Index doublets = 0;

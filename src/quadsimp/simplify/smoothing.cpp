@@ -61,6 +61,10 @@ void Simplifier::smooth_vertex(Index v) {
     spring(i2, rest_length(v, i2), 0.5);
     spring(id, kSqrt2 * rest_length(v, id), 1.0);
   });
+  if (!crease_.empty() && crease_[v] != kNone) {
+    slide_on_crease(v, sum / w);
+    return;
+  }
   Vec3 step, n = Vec3::Zero();
   // A border vertex slides along M0's border no further than its border neighbours.
   // Sliding past one, across a crack of bunny.ply, reversed the border's order there at

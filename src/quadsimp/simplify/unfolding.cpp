@@ -64,7 +64,7 @@ bool Simplifier::relocate_corner(Index f) {
   SurfacePoint best_foot;
   for (int i = 0; i < 4; ++i) {
     const Index v = c[i];
-    if (m_.is_border_vertex(v) || held_[v]) continue;
+    if (m_.is_border_vertex(v) || pinned(v)) continue;
     const Vec3 others = (m_.position(c[(i + 1) % 4]) + m_.position(c[(i + 2) % 4]) + m_.position(c[(i + 3) % 4])) / 3;
     for (double t : {0.5, 0.25, 0.125}) {
       const Vec3 step = t * (others - m_.position(v));

@@ -1,0 +1,187 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include "quadsimp/reference/creases.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace qs {
+
+std::vector<char> crease_edges(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
+                               double angle_deg) {
+  std::vector<char> crease(3 * std::size_t(mesh.n_faces()), 0);
+  if (!(angle_deg > 0 && angle_deg < 180)) return crease;
+  const double cos_max = std::cos(angle_deg * M_PI / 180.0);
+  const std::vector<Vec3> normal = unit_normals(mesh);
+  for (Index f = 0; f < mesh.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k) {
+      const Index g = adjacency[f][k];
+      // A triangle of no area has no normal (NaN): its edges are not creases.
+      crease[3 * f + k] = g != kNone && normal[f].dot(normal[g]) < cos_max;
+    }
+  return crease;
+}
+
+Creases::Creases(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency, double angle_deg) {
+  const std::vector<char> crease = crease_edges(mesh, adjacency, angle_deg);
+  const Index nv = mesh.n_vertices(), nf = mesh.n_faces();
+  auto from = [&](Index e) { return mesh.faces[e / 3][e % 3]; };
+  auto to = [&](Index e) { return mesh.faces[e / 3][(e % 3 + 1) % 3]; };
+  // Each crease edge once, as the half of its lower-numbered triangle, listed per vertex.
+  std::vector<Index> start(nv + 1, 0), edges;
+  std::vector<char> border(nv, 0);
+  auto canonical = [&](Index f, Index k) { return adjacency[f][k] > f; };
+  for (Index f = 0; f < nf; ++f)
+    for (Index k = 0; k < 3; ++k) {
+      const Index e = 3 * f + k;
+      if (adjacency[f][k] == kNone) border[from(e)] = border[to(e)] = 1;
+      if (crease[e] && canonical(f, k)) ++start[from(e) + 1], ++start[to(e) + 1], ++edges_;
+    }
+  for (Index v = 0; v < nv; ++v) start[v + 1] += start[v];
+  edges.resize(start[nv]);
+  std::vector<Index> fill(start.begin(), start.end() - 1);
+  for (Index f = 0; f < nf; ++f)
+    for (Index k = 0; k < 3; ++k)
+      if (crease[3 * f + k] && canonical(f, k)) edges[fill[from(3 * f + k)]++] = edges[fill[to(3 * f + k)]++] = 3 * f + k;
+  auto other_end = [&](Index e, Index v) { return from(e) == v ? to(e) : from(e); };
+  corner_.assign(nv, 0);
+  for (Index v = 0; v < nv; ++v) {
+    const Index degree = start[v + 1] - start[v];
+    if (degree == 0) continue;
+    bool corner = degree != 2 || border[v];
+    if (!corner) {
+      const Vec3& p = mesh.positions[v];
+      const Vec3 in = (p - mesh.positions[other_end(edges[start[v]], v)]).normalized();
+      const Vec3 out = (mesh.positions[other_end(edges[start[v] + 1], v)] - p).normalized();
+      corner = in.dot(out) < std::cos(M_PI / 4);
+    }
+    corner_[v] = corner;
+    corners_ += corner;
+  }
+  // Chains, first from every corner, then round the loops that are left.
+  std::vector<char> used(3 * std::size_t(nf), 0);
+  edge_curve_.assign(3 * std::size_t(nf), kNone);
+  edge_segment_.assign(3 * std::size_t(nf), kNone);
+  vertex_curve_.assign(nv, kNone);
+  vertex_index_.assign(nv, kNone);
+  auto walk = [&](Index v, Index e) {
+    Curve c;
+    c.vertices.push_back(v);
+    const Index id = Index(curves_.size());
+    for (;;) {
+      used[e] = 1;
+      const Index f = e / 3, k = e % 3, g = adjacency[f][k];
+      Index l = 0;
+      while (adjacency[g][l] != f || !crease[3 * g + l]) ++l;  // the same edge in g
+      const Index seg = Index(c.faces.size());
+      for (Index half : {e, 3 * g + l}) edge_curve_[half] = id, edge_segment_[half] = seg;
+      c.faces.push_back(f);
+      c.edge.push_back(std::uint8_t(k));
+      const Index w = other_end(e, v);
+      if (corner_[w]) {  // possibly the corner it started from
+        c.vertices.push_back(w);
+        break;
+      }
+      if (w == c.vertices.front()) {  // round a loop without a corner
+        c.closed = true;
+        break;
+      }
+      vertex_curve_[w] = id, vertex_index_[w] = Index(c.vertices.size());
+      c.vertices.push_back(w);
+      const Index next = edges[start[w]] == e ? edges[start[w] + 1] : edges[start[w]];
+      v = w, e = next;
+    }
+    if (c.closed) vertex_curve_[c.vertices[0]] = id, vertex_index_[c.vertices[0]] = 0;
+    curves_.push_back(std::move(c));
+  };
+  for (Index v = 0; v < nv; ++v)
+    if (corner_[v])
+      for (Index i = start[v]; i < start[v + 1]; ++i)
+        if (!used[edges[i]]) walk(v, edges[i]);
+  for (Index v = 0; v < nv; ++v)
+    for (Index i = start[v]; i < start[v + 1]; ++i)
+      if (!used[edges[i]]) walk(v, edges[i]);
+}
+
+Creases::Place Creases::place_of(const TriMesh& mesh, Index face, const Vec3& p, double tolerance) const {
+  Place place;
+  if (empty() || face >= mesh.n_faces()) return place;
+  const auto& t = mesh.faces[face];
+  for (Index v : t)
+    if ((p - mesh.positions[v]).norm() <= tolerance) {
+      place.corner = corner_[v];
+      place.curve = vertex_curve_[v];
+      if (place.curve != kNone) place.s = double(vertex_index_[v]);
+      return place;
+    }
+  for (Index k = 0; k < 3; ++k) {
+    const Index e = 3 * face + k;
+    if (edge_curve_[e] == kNone) continue;
+    const Vec3 &a = mesh.positions[t[k]], &b = mesh.positions[t[(k + 1) % 3]];
+    const double len2 = (b - a).squaredNorm();
+    const double x = len2 > 0 ? std::clamp((p - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
+    if ((a + x * (b - a) - p).norm() > tolerance) continue;
+    const Curve& c = curves_[edge_curve_[e]];
+    const Index seg = edge_segment_[e];
+    const bool forward = c.vertices[seg] == t[k];
+    place.curve = edge_curve_[e];
+    place.s = double(seg) + (forward ? x : 1 - x);
+    return place;
+  }
+  return place;
+}
+
+Creases::CurvePoint Creases::on_segment(const TriMesh& mesh, const Curve& c, Index i, double t) const {
+  const Index f = c.faces[i], k = c.edge[i];
+  const auto& tri = mesh.faces[f];
+  const bool forward = tri[k] == c.vertices[i];
+  double w[3] = {0, 0, 0};
+  w[k] = forward ? 1 - t : t;
+  w[(k + 1) % 3] = forward ? t : 1 - t;
+  CurvePoint x;
+  x.foot.face = f;
+  x.foot.u = w[1], x.foot.v = w[2];
+  x.foot.point = w[0] * mesh.positions[tri[0]] + w[1] * mesh.positions[tri[1]] + w[2] * mesh.positions[tri[2]];
+  x.s = double(i) + t;
+  return x;
+}
+
+Creases::CurvePoint Creases::at(const TriMesh& mesh, Index c, double s) const {
+  const Curve& curve = curves_[c];
+  const double n = span(c);
+  if (curve.closed) s -= n * std::floor(s / n);
+  s = std::clamp(s, 0.0, n);
+  const Index i = std::min(Index(s), Index(curve.faces.size()) - 1);
+  return on_segment(mesh, curve, i, s - double(i));
+}
+
+Creases::CurvePoint Creases::closest(const TriMesh& mesh, Index c, const Vec3& p, double s, double back,
+                                     double ahead) const {
+  const Curve& curve = curves_[c];
+  const double n = span(c);
+  double lo = s - back, hi = s + ahead;
+  if (!curve.closed) lo = std::max(lo, 0.0), hi = std::min(hi, n);
+  if (hi - lo > n) lo = s - 0.5 * n, hi = s + 0.5 * n;  // once round a loop
+  CurvePoint best;
+  const auto& P = mesh.positions;
+  const Index segments = Index(curve.faces.size());
+  for (double i = std::floor(lo); i < hi; ++i) {
+    const Index seg = curve.closed ? Index(i - n * std::floor(i / n)) : Index(i);
+    if (seg >= segments) break;
+    const Vec3 &a = P[curve.vertices[seg]], &b = P[curve.vertices[(seg + 1) % curve.vertices.size()]];
+    const double len2 = (b - a).squaredNorm();
+    const double t0 = std::max(lo - i, 0.0), t1 = std::min(hi - i, 1.0);
+    const double t = std::clamp(len2 > 0 ? (p - a).dot(b - a) / len2 : 0.0, t0, t1);
+    const double d = (a + t * (b - a) - p).norm();
+    if (best.foot.found() && d >= best.foot.distance) continue;
+    best = on_segment(mesh, curve, seg, t);
+    best.foot.distance = d;
+  }
+  return best;
+}
+
+double Creases::ahead_of(Index c, double s, double t) const {
+  const double d = t - s, n = span(c);
+  return curves_[c].closed ? d - n * std::floor(d / n) : d;
+}
+
+}  // namespace qs

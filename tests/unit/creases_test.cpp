@@ -1,0 +1,391 @@
+// quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+// Creases kept: their curves on M0 (reference/creases.h), the conversion that pairs no
+// triangles across them, and the simplifier that keeps them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "fixtures/shapes.h"
+#include "quadsimp/convert/tri_to_quad.h"
+#include "quadsimp/fitmap/fitmap.h"
+#include "quadsimp/mesh/clean.h"
+#include "quadsimp/metrics/metrics.h"
+#include "quadsimp/reference/creases.h"
+#include "quadsimp/simplify/simplify.h"
+
+using namespace qs;
+using namespace qs::fixtures;
+
+namespace {
+
+Creases creases_of(const TriMesh& t, double angle) { return Creases(t, triangle_adjacency(t), angle); }
+
+// The number of coordinates of p at 0 or 1: 2 on an edge of the unit cube, 3 at a corner.
+int on_cube_sides(const Vec3& p) {
+  int n = 0;
+  for (int k = 0; k < 3; ++k) n += std::abs(p[k]) < 1e-12 || std::abs(p[k] - 1) < 1e-12;
+  return n;
+}
+
+// A roof: tri_grid(n, n) raised to `height` along its diagonal x + y = 1, which for an
+// odd n runs along the diagonals its cells are split at.
+TriMesh roof(int n, double height) {
+  TriMesh t = tri_grid(n, n);
+  for (Vec3& p : t.positions) p.z() = height * (1 - std::abs(p.x() + p.y() - 1));
+  return t;
+}
+
+bool on_ridge(const Vec3& a, const Vec3& b) {
+  return std::abs(a.x() + a.y() - 1) < 1e-12 && std::abs(b.x() + b.y() - 1) < 1e-12;
+}
+
+// Every edge of M0 whose ends both satisfy `on` (and are not the same) is an edge of a quad.
+template <class On>
+::testing::AssertionResult crease_edges_are_quad_edges(const TriMesh& t, const QuadMesh& q, On&& on) {
+  std::set<std::pair<Index, Index>> quad_edges;
+  std::map<std::array<long long, 3>, Index> id;
+  auto key = [](const Vec3& p) {
+    return std::array<long long, 3>{std::llround(p.x() * 1e9), std::llround(p.y() * 1e9), std::llround(p.z() * 1e9)};
+  };
+  for (Index v = 0; v < q.vertex_capacity(); ++v)
+    if (q.is_vertex_live(v)) id[key(q.position(v))] = v;
+  for (Index f = 0; f < q.face_capacity(); ++f)
+    for (Index k = 0; k < 4 && q.is_face_live(f); ++k)
+      quad_edges.insert(std::minmax(q.vertex(f, k), q.vertex(f, k + 1)));
+  int missing = 0, seen = 0;
+  for (const auto& f : t.faces)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 &a = t.positions[f[k]], &b = t.positions[f[(k + 1) % 3]];
+      if (!on(a, b)) continue;
+      ++seen;
+      const auto ia = id.find(key(a)), ib = id.find(key(b)), im = id.find(key(0.5 * (a + b)));
+      if (ia == id.end() || ib == id.end()) {
+        ++missing;
+        continue;
+      }
+      // A crease edge split at its midpoint (the conversion's parity fix) is two quad edges.
+      const bool whole = quad_edges.count(std::minmax(ia->second, ib->second)) > 0;
+      const bool halves = im != id.end() && quad_edges.count(std::minmax(ia->second, im->second)) > 0 &&
+                          quad_edges.count(std::minmax(im->second, ib->second)) > 0;
+      missing += !whole && !halves;
+    }
+  if (seen == 0) return ::testing::AssertionFailure() << "no crease edge in the input";
+  if (missing > 0) return ::testing::AssertionFailure() << missing << " of " << seen << " crease edges are no quad edges";
+  return ::testing::AssertionSuccess();
+}
+
+bool on_cube_edge(const Vec3& a, const Vec3& b) {
+  // Both ends on one edge of the cube: two coordinates at 0 or 1, the same for both.
+  int shared = 0;
+  for (int k = 0; k < 3; ++k)
+    shared += (std::abs(a[k]) < 1e-12 && std::abs(b[k]) < 1e-12) ||
+              (std::abs(a[k] - 1) < 1e-12 && std::abs(b[k] - 1) < 1e-12);
+  return shared >= 2;
+}
+
+// Splits the M0 edge between positions pa and pb at its midpoint, in its triangles.
+void split_edge(TriMesh& t, const Vec3& pa, const Vec3& pb) {
+  Index a = kNone, b = kNone;
+  for (Index v = 0; v < t.n_vertices(); ++v) {
+    if ((t.positions[v] - pa).norm() < 1e-12) a = v;
+    if ((t.positions[v] - pb).norm() < 1e-12) b = v;
+  }
+  ASSERT_NE(a, kNone);
+  ASSERT_NE(b, kNone);
+  const Index m = t.n_vertices();
+  t.positions.push_back(0.5 * (pa + pb));
+  const Index n = t.n_faces();
+  int split = 0;
+  for (Index f = 0; f < n; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Index u = t.faces[f][k], w = t.faces[f][(k + 1) % 3], c = t.faces[f][(k + 2) % 3];
+      if (!((u == a && w == b) || (u == b && w == a))) continue;
+      t.faces[f] = {u, m, c};
+      t.faces.push_back({m, w, c});
+      ++split;
+      break;
+    }
+  ASSERT_GE(split, 1);
+}
+
+}  // namespace
+
+TEST(Creases, a_cube_has_twelve_curves_between_eight_corners) {
+  const TriMesh t = tri_cube(4);
+  const Creases c = creases_of(t, 30);
+  EXPECT_EQ(c.n_curves(), 12u);
+  EXPECT_EQ(c.n_corners(), 8u);
+  EXPECT_EQ(c.n_edges(), 48u);
+  for (Index i = 0; i < c.n_curves(); ++i) {
+    EXPECT_FALSE(c.closed(i));
+    const auto& v = c.vertices(i);
+    ASSERT_EQ(v.size(), 5u);
+    EXPECT_EQ(c.span(i), 4.0);
+    EXPECT_EQ(on_cube_sides(t.positions[v.front()]), 3);
+    EXPECT_EQ(on_cube_sides(t.positions[v.back()]), 3);
+    for (std::size_t k = 1; k + 1 < v.size(); ++k) EXPECT_EQ(on_cube_sides(t.positions[v[k]]), 2);
+  }
+}
+
+TEST(Creases, none_below_the_angle_or_without_one) {
+  EXPECT_TRUE(creases_of(tri_cube(4), 0).empty());
+  EXPECT_TRUE(creases_of(tri_cube(4), 95).empty());  // a cube's edges turn by 90 degrees
+  EXPECT_EQ(creases_of(tri_cube(4), 85).n_curves(), 12u);
+  EXPECT_TRUE(creases_of(tri_sphere(20, 40), 30).empty());
+  EXPECT_TRUE(creases_of(tri_grid(6, 6), 1).empty());
+}
+
+TEST(Creases, a_cylinder_has_two_closed_rims) {
+  const int around = 32;
+  const TriMesh t = cad_cylinder(around, 4, 2.0);
+  const Creases c = creases_of(t, 30);
+  ASSERT_EQ(c.n_curves(), 2u);
+  EXPECT_EQ(c.n_corners(), 0u);
+  for (Index i = 0; i < 2; ++i) {
+    EXPECT_TRUE(c.closed(i));
+    EXPECT_EQ(c.span(i), double(around));
+    for (Index v : c.vertices(i)) {
+      const Vec3& p = t.positions[v];
+      EXPECT_NEAR(std::hypot(p.x(), p.y()), 1.0, 1e-12);
+      EXPECT_TRUE(p.z() == 0.0 || p.z() == 2.0);
+    }
+  }
+}
+
+TEST(Creases, closest_stays_within_its_arc) {
+  const TriMesh t = tri_cube(4);
+  const Creases c = creases_of(t, 30);
+  for (Index i = 0; i < c.n_curves(); ++i) {
+    const auto& v = c.vertices(i);
+    const Vec3 a = t.positions[v.front()], b = t.positions[v.back()];
+    // A point off the middle of the curve comes back onto it, at its parameter.
+    const Vec3 mid = 0.5 * (a + b), off = mid + 0.1 * Vec3(1, 1, 1);
+    const Creases::CurvePoint x = c.closest(t, i, off, 2.0, 2.0, 2.0);
+    ASSERT_TRUE(x.foot.found());
+    EXPECT_NEAR(x.s, 2.0, 0.41);
+    EXPECT_LT((x.foot.point - (mid + 0.1 * (b - a).normalized().dot(Vec3(1, 1, 1)) * (b - a).normalized())).norm(),
+              1e-12);
+    // Bounded ahead by half a segment, a point at the curve's end stops there.
+    const Creases::CurvePoint y = c.closest(t, i, b, 1.0, 1.0, 0.5);
+    EXPECT_NEAR(y.s, 1.5, 1e-12);
+    EXPECT_LT((y.foot.point - c.at(t, i, 1.5).foot.point).norm(), 1e-12);
+    // The foot is a point of M0: its triangle's corners give it back.
+    const auto& f = t.faces[y.foot.face];
+    const Vec3 p = (1 - y.foot.u - y.foot.v) * t.positions[f[0]] + y.foot.u * t.positions[f[1]] +
+                   y.foot.v * t.positions[f[2]];
+    EXPECT_LT((p - y.foot.point).norm(), 1e-12);
+  }
+  // Round a closed rim the arc wraps past parameter 0.
+  const TriMesh cyl = cad_cylinder(32, 4, 2.0);
+  const Creases r = creases_of(cyl, 30);
+  const Vec3 behind = r.at(cyl, 0, 30.5).foot.point;
+  const Creases::CurvePoint w = r.closest(cyl, 0, behind, 0.5, 2.0, 2.0);
+  EXPECT_NEAR(w.s, 30.5, 1e-9);
+  EXPECT_NEAR(r.ahead_of(0, 31.0, 1.0), 2.0, 1e-12);
+  EXPECT_NEAR(r.ahead_of(0, 1.0, 31.0), 30.0, 1e-12);
+}
+
+TEST(Creases, place_of_tells_corners_curves_and_the_rest) {
+  const TriMesh t = tri_cube(4);
+  const Creases c = creases_of(t, 30);
+  int corners = 0, curve_vertices = 0, midpoints = 0, plain = 0;
+  for (Index f = 0; f < t.n_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 &a = t.positions[t.faces[f][k]], &b = t.positions[t.faces[f][(k + 1) % 3]];
+      const Creases::Place pa = c.place_of(t, f, a, 1e-9);
+      const int sides = on_cube_sides(a);
+      if (sides == 3) corners += pa.corner;
+      if (sides == 2) curve_vertices += pa.curve != kNone && !pa.corner;
+      if (sides < 2) plain += pa.curve == kNone && !pa.corner;
+      const Creases::Place pm = c.place_of(t, f, 0.5 * (a + b), 1e-9);
+      if (on_cube_edge(a, b)) {
+        ASSERT_NE(pm.curve, kNone);
+        EXPECT_NEAR(pm.s - std::floor(pm.s), 0.5, 1e-9);
+        EXPECT_LT((c.at(t, pm.curve, pm.s).foot.point - 0.5 * (a + b)).norm(), 1e-12);
+        ++midpoints;
+      } else {
+        EXPECT_EQ(pm.curve, kNone);
+      }
+    }
+  EXPECT_GT(corners, 0);
+  EXPECT_GT(curve_vertices, 0);
+  EXPECT_GT(plain, 0);
+  EXPECT_EQ(midpoints, 2 * 48);  // each crease edge seen from both its triangles
+}
+
+TEST(Creases, the_conversion_pairs_no_triangles_across_a_crease) {
+  // A roof whose sides meet at 24 degrees: the greedy pairing takes pairs bent up to 60,
+  // and pairs the two triangles of each cell along the ridge. 81 triangles lie on either
+  // side: one ridge edge is split so that each side pairs up on its own.
+  const TriMesh t = roof(9, 0.15);
+  ConvertOptions with;
+  with.crease_angle_deg = 15;
+  ConvertReport report;
+  const QuadMesh q = tri_to_quad(t, with, &report);
+  validate(q);
+  EXPECT_EQ(report.crease_splits, 1u);
+  EXPECT_EQ(report.parity_splits, 0u);
+  EXPECT_FALSE(report.refined);
+  EXPECT_EQ(report.pairing_rate(), 1.0);
+  EXPECT_TRUE(crease_edges_are_quad_edges(t, q, on_ridge));
+  EXPECT_FALSE(crease_edges_are_quad_edges(t, tri_to_quad(t), on_ridge));
+  // An angle above the roof's turns nothing into a crease.
+  ConvertOptions blunt;
+  blunt.crease_angle_deg = 30;
+  EXPECT_EQ(tri_to_quad(t, blunt).quads(), tri_to_quad(t).quads());
+}
+
+TEST(Creases, parts_between_creases_are_made_even_across_them) {
+  // Splitting one segment of an edge of the cube adds a triangle to both sides at it. Two
+  // such splits, x = 1 | y = 1 and y = 1 | x = 0, leave the opposite sides x = 1 and x = 0
+  // odd: the parity fix hands the oddness across y = 1.
+  TriMesh t = tri_cube(4);
+  split_edge(t, Vec3(1, 1, 0.25), Vec3(1, 1, 0.5));
+  split_edge(t, Vec3(0, 1, 0.5), Vec3(0, 1, 0.75));
+  ConvertOptions o;
+  o.crease_angle_deg = 30;
+  ConvertReport report;
+  const QuadMesh q = tri_to_quad(t, o, &report);
+  validate(q);
+  EXPECT_EQ(report.crease_splits, 2u);
+  EXPECT_EQ(report.parity_splits, 0u);
+  // Even, two sides still have no pairing of their own (their cells are split alike, and
+  // a triangle was added to each at one end): a few pairs across creases are split.
+  EXPECT_GT(report.crease_midpoints, 0u);
+  EXPECT_FALSE(report.refined);
+  EXPECT_EQ(report.pairing_rate(), 1.0);
+  EXPECT_TRUE(crease_edges_are_quad_edges(t, q, on_cube_edge));
+
+  // Open and odd: a roof with a border edge split has 82 triangles on one side and 81 on
+  // the other. The side with the longest border edge takes the oddness, whichever it is,
+  // and the parity fix splits that edge.
+  TriMesh open = roof(9, 0.15);
+  split_edge(open, open.positions[0], open.positions[1]);
+  ASSERT_EQ(open.n_faces() % 2, 1u);
+  o.crease_angle_deg = 15;
+  const QuadMesh oq = tri_to_quad(open, o, &report);
+  validate(oq);
+  EXPECT_EQ(report.crease_splits, 1u);
+  EXPECT_EQ(report.crease_midpoints, 0u);
+  EXPECT_EQ(report.parity_splits, 1u);
+  EXPECT_FALSE(report.refined);
+  EXPECT_EQ(report.pairing_rate(), 1.0);
+  EXPECT_TRUE(crease_edges_are_quad_edges(open, oq, on_ridge));
+}
+
+namespace {
+
+// The quads of t converted and simplified to `target` keeping its creases at `angle`
+// (none for 0), with every invariant checked after each change.
+QuadMesh simplified(const TriMesh& t, const ReferenceSurface& ref, Index target, double angle,
+                    SimplifyReport* report = nullptr, const Fitmaps* fitmaps = nullptr) {
+  ConvertOptions co;
+  co.crease_angle_deg = angle;
+  QuadMesh q = tri_to_quad(ref.mesh(), co);
+  const Creases creases(ref.mesh(), ref.adjacency(), angle);
+  SimplifyOptions opt;
+  if (fitmaps) {
+    opt.adaptive = true;
+    opt.fitmaps = fitmaps;
+    opt.refuse_folds = true;
+  }
+  opt.target_faces = target;
+  opt.creases = &creases;
+  opt.check_invariants = true;
+  const SimplifyReport r = simplify(q, ref, opt);
+  if (report) *report = r;
+  validate(q);
+  return q;
+}
+
+// How many of the unit cube's corners are vertices of q.
+int cube_corners_kept(const QuadMesh& q) {
+  int n = 0;
+  for (Index v = 0; v < q.vertex_capacity(); ++v) n += q.is_vertex_live(v) && on_cube_sides(q.position(v)) == 3;
+  return n;
+}
+
+}  // namespace
+
+TEST(Creases, a_cube_keeps_its_edges_and_corners) {
+  const TriMesh t = tri_cube(16);
+  const ReferenceSurface ref(t);
+  SimplifyReport r;
+  const QuadMesh q = simplified(t, ref, 150, 30, &r);
+  EXPECT_LE(q.n_faces(), 150u);
+  EXPECT_GT(r.crease_collapses, 0u);
+  EXPECT_EQ(cube_corners_kept(q), 8);
+  const QuadQuality quality = quad_quality(q, &ref);
+  EXPECT_EQ(quality.nonconvex_faces + quality.flipped_faces + quality.folded_faces, 0u);
+  EXPECT_GT(quality.regular_percent, 60.0);
+  // Every vertex on the cube and every quad flat on one side: no distance either way.
+  // Without creases the smoothing rounds the edges off.
+  const double kept = surface_distance(q, ref, 20000).hausdorff;
+  const double rounded = surface_distance(simplified(t, ref, 150, 0), ref, 20000).hausdorff;
+  EXPECT_LT(kept, 1e-6 * ref.bbox_diagonal()) << "rounded off: " << rounded;  // Embree's floats
+  EXPECT_GT(rounded, 1e-2 * ref.bbox_diagonal());
+}
+
+TEST(Creases, flat_quads_split_at_a_crease_are_taken_out) {
+  // The cube whose sides have no pairing of their own (above): the converter's flat quads
+  // on either side of a crease midpoint go with the crease coarsening.
+  TriMesh t = tri_cube(8);
+  split_edge(t, Vec3(1, 1, 0.25), Vec3(1, 1, 0.375));
+  split_edge(t, Vec3(0, 1, 0.5), Vec3(0, 1, 0.625));
+  const ReferenceSurface ref(t);
+  ConvertOptions co;
+  co.crease_angle_deg = 30;
+  ConvertReport cr;
+  const QuadQuality converted = quad_quality(tri_to_quad(ref.mesh(), co, &cr));
+  ASSERT_GT(cr.crease_midpoints, 0u);
+  EXPECT_GT(converted.nonconvex_faces, 0u);
+  const QuadMesh q = simplified(t, ref, 100, 30);
+  EXPECT_LE(q.n_faces(), 100u);
+  EXPECT_EQ(cube_corners_kept(q), 8);
+  EXPECT_EQ(quad_quality(q, &ref).nonconvex_faces, 0u);
+  EXPECT_LT(surface_distance(q, ref, 20000).hausdorff, 1e-6 * ref.bbox_diagonal());
+}
+
+TEST(Creases, a_cylinder_keeps_its_rims) {
+  const TriMesh t = cad_cylinder(48, 24, 2.0);
+  const ReferenceSurface ref(t);
+  const QuadMesh q = simplified(t, ref, 200, 30);
+  EXPECT_LE(q.n_faces(), 200u);
+  // The rims' vertices stay on M0's rims (polygons of 48 sides); the quads' rims are
+  // polygons of fewer sides, so M0's lie off the quads by at most a chord's sagitta.
+  auto off_rims = [](const Vec3& p) {
+    double d = std::numeric_limits<double>::infinity();
+    for (double z : {0.0, 2.0})
+      for (int k = 0; k < 48; ++k) {
+        const Vec3 a(std::cos(2 * M_PI * k / 48), std::sin(2 * M_PI * k / 48), z);
+        const Vec3 b(std::cos(2 * M_PI * (k + 1) / 48), std::sin(2 * M_PI * (k + 1) / 48), z);
+        const double x = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+        d = std::min(d, (a + x * (b - a) - p).norm());
+      }
+    return d;
+  };
+  int on_rim = 0;
+  for (Index v = 0; v < q.vertex_capacity(); ++v)
+    if (q.is_vertex_live(v)) on_rim += off_rims(q.position(v)) < 1e-9;
+  EXPECT_GE(on_rim, 2 * 8);
+  const QuadQuality quality = quad_quality(q, &ref);
+  EXPECT_EQ(quality.nonconvex_faces + quality.flipped_faces + quality.folded_faces, 0u);
+  const double kept = surface_distance(q, ref, 20000).hausdorff;
+  const double rounded = surface_distance(simplified(t, ref, 200, 0), ref, 20000).hausdorff;
+  EXPECT_LT(kept, 0.5 * rounded);
+}
+
+TEST(Creases, adaptive_runs_keep_them_too) {
+  const TriMesh t = tri_cube(16);
+  const ReferenceSurface ref(t);
+  const Fitmaps f = compute_fitmaps(t);
+  SimplifyReport r;
+  const QuadMesh q = simplified(t, ref, 150, 30, &r, &f);
+  EXPECT_LE(q.n_faces(), 150u);
+  EXPECT_EQ(cube_corners_kept(q), 8);
+  EXPECT_LT(surface_distance(q, ref, 20000).hausdorff, 1e-6 * ref.bbox_diagonal());
+}
