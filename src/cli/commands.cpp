@@ -123,7 +123,9 @@ int run_convert(const ConvertArgs& a) {
   try {
     const auto t0 = std::chrono::steady_clock::now();
     const LogFn log = stderr_log(a.quiet);
-    Input in = load_input(a.input, {}, log);
+    ConvertOptions options;
+    options.crease_angle_deg = a.crease_angle;
+    Input in = load_input(a.input, options, log);
     if (const std::string why = texture_clash(a.output, in); !why.empty()) {
       std::cerr << "quadsimp convert: " << why << "\n";
       return kBadArguments;
@@ -136,9 +138,13 @@ int run_convert(const ConvertArgs& a) {
                   in.quads.n_faces(), a.output.c_str(), s);
     } else {
       const auto& r = in.convert;
-      std::printf("%s: %u triangles -> %u quads (paired %.2f%%: greedy %u, re-paired %u; border splits: %u parity, %u unmatchable%s), written to %s (%.2f s)\n",
+      const std::string creases =
+          a.crease_angle > 0 ? "; crease splits: " + std::to_string(r.crease_splits) + " parity, " +
+                                   std::to_string(r.crease_midpoints) + " unmatchable"
+                             : "";
+      std::printf("%s: %u triangles -> %u quads (paired %.2f%%: greedy %u, re-paired %u; border splits: %u parity, %u unmatchable%s%s), written to %s (%.2f s)\n",
                   a.input.c_str(), r.input_triangles, r.quads, 100.0 * r.pairing_rate(), r.paired_greedy,
-                  r.paired_augmented, r.parity_splits, r.border_splits,
+                  r.paired_augmented, r.parity_splits, r.border_splits, creases.c_str(),
                   r.refined ? "; refined once" : "", a.output.c_str(), s);
     }
     return kOk;
@@ -161,7 +167,7 @@ int run_simplify(const SimplifyArgs& a) {
   try {
     const auto t0 = std::chrono::steady_clock::now();
     const LogFn log = stderr_log(a.quiet);
-    Input in = load_input(a.input, {}, log);
+    Input in = load_input(a.input, convert_options(params), log);
     if (const std::string why = texture_clash(a.output, in); !why.empty()) {
       std::cerr << "quadsimp simplify: " << why << "\n";
       return kBadArguments;
@@ -187,6 +193,8 @@ int run_simplify(const SimplifyArgs& a) {
                                   ", \"border_collapses\": " + n(r.border_collapses) +
                                   ", \"border_insets\": " + n(r.border_insets) + ", \"tips\": " + n(r.tips) +
                                   ", \"chord_collapses\": " + n(r.chord_collapses) + ", \"rotations\": " + n(r.rotations) +
+                                  ", \"crease_collapses\": " + n(r.crease_collapses) +
+                                  ", \"crease_vertices\": " + n(r.crease_vertices) +
                                   ", \"unfolds\": " + n(r.unfolds) + ", \"converted_faces\": " + n(converted) +
                                   ", \"input_faces\": " + n(r.initial_faces) +
                                   ", \"target_faces\": " + n(r.target_faces) +

@@ -13,6 +13,7 @@ enum Exit : int { kOk = 0, kBadInput = 1, kBadArguments = 2 };
 
 struct ConvertArgs {
   std::string input, output;
+  double crease_angle = 0;  // SimplifyParams::crease_angle
   int texture_size = TextureBakeOptions().max_side;  // the quads' texture's largest side
   bool quiet = false;
 };

@@ -26,6 +26,13 @@ CLI::Validator whole_number_from_one() {
   return CLI::Validator([](std::string& s) { return not_a_whole_number_from_one(s); }, "N>=1");
 }
 
+// --crease-angle DEG: the sharp edges kept (0: none, the default).
+void add_crease_angle(CLI::App* command, double& angle, const std::string& what) {
+  command->add_option("--crease-angle", angle, what + " (degrees between their faces' normals; 0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 179.0));
+}
+
 void add_texture_size(CLI::App* command, int& size) {
   command->add_option("--texture-size", size,
                       "the largest width and height of the quads' texture, baked from the input's (OBJ, PLY output)")
@@ -79,6 +86,7 @@ int main(int argc, char** argv) {
   auto* c = app.add_subcommand("convert", "Convert a triangle mesh (PLY, OBJ, OFF, STL) into a pure quad mesh");
   c->add_option("IN", convert.input, "input mesh")->required()->check(CLI::ExistingFile);
   c->add_option("OUT", convert.output, "output quad mesh (.ply, .obj or .off)")->required();
+  add_crease_angle(c, convert.crease_angle, "pair no triangles across edges sharper than this");
   add_texture_size(c, convert.texture_size);
   c->add_flag("-q,--quiet", convert.quiet, "no notes on stderr");
 
@@ -135,6 +143,7 @@ int main(int argc, char** argv) {
   s->add_flag("--keep-tips", simp.params.keep_tips,
               "hold a vertex at each tip of the input (claws, a nose) that the smoothing would otherwise cut back "
               "(ours; quads capping a tip narrower than themselves count as folded)");
+  add_crease_angle(s, simp.params.crease_angle, "keep the input's edges sharper than this as edges of the quads");
   s->add_flag("--fast", simp.params.fast,
               "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");
   s->add_flag("--fit-to-input", simp.params.fit_to_input,

@@ -632,6 +632,33 @@ TEST_F(Cli, keep_tips_holds_a_vertex_on_each_spike) {
   }
 }
 
+TEST_F(Cli, crease_angle_keeps_a_cubes_edges) {
+  // --crease-angle 30: the cube's 8 corners are corners of the quads and its edges are
+  // kept, with no distance to it (JSON); without, its edges are rounded off.
+  write_tri_mesh_ply(p("cube.ply"), fixtures::tri_cube(16));
+  for (bool creases : {false, true}) {
+    const CliRun r = run("simplify " + p("cube.ply") + " " + p("c.obj") + " --faces 150 --json -q" +
+                         (creases ? " --crease-angle 30" : ""));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out.find("\"crease_collapses\": 0,") == std::string::npos, creases) << r.out;
+    const MeshFile out = read_mesh(p("c.obj"));
+    int corners = 0;
+    for (const Vec3& x : out.positions) {
+      int sides = 0;
+      for (int k = 0; k < 3; ++k) sides += x[k] == 0.0 || x[k] == 1.0;
+      corners += sides == 3;
+    }
+    EXPECT_EQ(corners, creases ? 8 : 0);
+    EXPECT_EQ(r.out.find("\"hausdorff_e3\": 0.0000,") != std::string::npos, creases) << r.out;
+  }
+  // The conversion alone pairs no triangles across them, and says what it split.
+  const CliRun c = run("convert " + p("cube.ply") + " " + p("q.ply") + " --crease-angle 30");
+  ASSERT_EQ(c.code, 0) << c.out;
+  EXPECT_NE(c.out.find("crease splits: 0 parity, 0 unmatchable"), std::string::npos) << c.out;
+  EXPECT_EQ(run("simplify " + p("cube.ply") + " " + p("c.obj") + " --faces 150 --crease-angle 180").code, 2);
+  EXPECT_EQ(run("convert " + p("cube.ply") + " " + p("c.obj") + " --crease-angle -1").code, 2);
+}
+
 TEST_F(Cli, fitmap_marks_the_tips_keep_tips_holds) {
   // The same spiky sphere: `fitmap --tips 100` marks its three apexes (per-vertex `tip`),
   // which simplify's --keep-tips holds at 100 quads, and nothing else.

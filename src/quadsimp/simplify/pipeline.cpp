@@ -28,7 +28,14 @@ std::string check_params(const SimplifyParams& p) {
   if (!(p.halt_share > 0 && p.halt_share <= 1)) return "the halting share must be in (0, 1]";
   if (!(p.max_aspect >= 1)) return "the largest aspect must be at least 1";
   if (!(p.reach >= 0 && p.reach <= 1)) return "the reach must be in [0, 1]";
+  if (!(p.crease_angle >= 0 && p.crease_angle < 180)) return "the crease angle must be in [0, 180)";
   return {};
+}
+
+ConvertOptions convert_options(const SimplifyParams& p) {
+  ConvertOptions o;
+  o.crease_angle_deg = p.crease_angle;
+  return o;
 }
 
 Index target_faces_of(const SimplifyParams& p, Index quads) {
@@ -66,6 +73,8 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
     fitmaps = compute_fitmaps(ref.mesh(), fo);
   }
   SimplifyOptions opt = simplify_options(p, &fitmaps);
+  const Creases creases(ref.mesh(), ref.adjacency(), p.crease_angle);
+  opt.creases = &creases;
   opt.target_faces = target_faces_of(p, in.quads.n_faces());
   opt.progress = progress;
   SimplifyReport r = simplify(in.quads, ref, opt);
@@ -140,7 +149,7 @@ std::string defects_note(const QuadQuality& q, Index beyond_reach) {
 std::string operations_done(const SimplifyReport& r) {
   const auto n = [](Index x) { return std::to_string(x); };
   return n(r.collapses) + " collapses, " + (r.chord_collapses ? n(r.chord_collapses) + " chord collapses, " : "") +
-         n(r.rotations) + " rotations";
+         (r.crease_collapses ? n(r.crease_collapses) + " crease collapses, " : "") + n(r.rotations) + " rotations";
 }
 
 }  // namespace qs

@@ -28,12 +28,20 @@ struct SimplifyParams {
   double reach = 0.045;          //!< adaptive: see SimplifyOptions::reach (0: no check)
   bool preserve_boundary = false;
   bool keep_tips = false;        //!< see SimplifyOptions::keep_tips
+  //! Keep the input's edges sharper than this (degrees; 0: none) as chains of the quads'
+  //! edges: the conversion pairs no triangles across them (convert_options()) and the
+  //! simplifier keeps them (SimplifyOptions::creases).
+  double crease_angle = 0;
   bool fast = false;             //!< one optimisation pass per collapse (the paper's loop)
   bool fit_to_input = false;     //!< afterwards, fit_to_surface(): vertices leave the input
 };
 
 //! Checks a parameter combination; returns "" or the reason it is refused.
 std::string check_params(const SimplifyParams& params);
+
+//! The conversion's options for `params` (the crease angle): what prepare_input() and
+//! load_input() must be given for simplify_input() to keep creases.
+ConvertOptions convert_options(const SimplifyParams& params);
 
 //! The face target `params` set for an input that converts to `quads` quads: target_faces,
 //! or target_share of `quads` (at least 1); 0 for none (automatic halting).
@@ -85,7 +93,7 @@ std::string holes_note(const QuadQuality& quality);
 std::vector<std::string> result_notes(const SimplifyReport& report, const QuadQuality& quality, Index target_faces);
 
 //! The operations a run did, for a summary line: "N collapses, M rotations", with the
-//! chord collapses between them when there were any.
+//! chord and crease collapses between them when there were any.
 std::string operations_done(const SimplifyReport& report);
 
 }  // namespace qs
