@@ -131,7 +131,7 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
     }
     case kConvert: {
       MeshFile file = layer_file(m, textures, images);
-      const LayerQuads q = run_conversion(std::move(file), name, out, images);
+      const LayerQuads q = run_conversion(std::move(file), name, params.getFloat("CreaseAngle"), out, images);
       std::optional<SurfaceColours<Mesh>> colours;
       if (coloured) colours.emplace(m->cm, vertex_coloured, face_coloured);
       assign_quads(m->cm, q.mesh, q.split);

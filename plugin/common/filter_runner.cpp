@@ -51,7 +51,7 @@ LayerQuads quads_of(Input& in, const std::vector<Image>& images) {
 LayerQuads run_simplification(MeshFile layer, const std::string& name, const SimplifyParams& params,
                               const ProgressFn& progress, Outcome& o, const std::vector<Image>& images) {
   const auto t0 = std::chrono::steady_clock::now();
-  Input in = prepare_input(std::move(layer), name, {}, log_into(o));
+  Input in = prepare_input(std::move(layer), name, convert_options(params), log_into(o));
   describe_input(in, name, o);
   const ReferenceSurface ref(std::move(in.reference));
   const SimplifyReport r = simplify_input(in, ref, params, progress);
@@ -66,8 +66,13 @@ LayerQuads run_simplification(MeshFile layer, const std::string& name, const Sim
   return quads_of(in, images);
 }
 
-LayerQuads run_conversion(MeshFile layer, const std::string& name, Outcome& o, const std::vector<Image>& images) {
-  Input in = prepare_input(std::move(layer), name, {}, log_into(o));
+LayerQuads run_conversion(MeshFile layer, const std::string& name, double crease_angle, Outcome& o,
+                          const std::vector<Image>& images) {
+  SimplifyParams params;  // checked as the simplification's
+  params.target_faces = 1;
+  params.crease_angle = crease_angle;
+  if (const std::string why = check_params(params); !why.empty()) throw std::invalid_argument(why);
+  Input in = prepare_input(std::move(layer), name, convert_options(params), log_into(o));
   describe_input(in, name, o);
   o.values = {{"faces", in.quads.n_faces()}, {"pairing_rate", in.convert.pairing_rate()}};
   return quads_of(in, images);

@@ -35,9 +35,10 @@ struct LayerQuads {
 LayerQuads run_simplification(MeshFile layer, const std::string& name, const SimplifyParams& params,
                               const ProgressFn& progress, Outcome& outcome, const std::vector<Image>& images = {});
 
-//! Prepares `layer` and returns its quads, with its texture as run_simplification() does.
-//! \throw InvalidInput.
-LayerQuads run_conversion(MeshFile layer, const std::string& name, Outcome& outcome,
+//! Prepares `layer` and returns its quads, with its texture as run_simplification() does;
+//! no pair is made across an edge sharper than `crease_angle` degrees (0: none).
+//! \throw InvalidInput; std::invalid_argument for an angle outside [0, 180).
+LayerQuads run_conversion(MeshFile layer, const std::string& name, double crease_angle, Outcome& outcome,
                           const std::vector<Image>& images = {});
 
 //! S and M fitmaps at the layer's own vertices (cleaning may merge or drop vertices,

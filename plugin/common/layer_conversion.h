@@ -180,6 +180,7 @@ SimplifyParams simplify_params_of(const ParameterList& params) {
   p.reach = params.getFloat("Reach");
   p.preserve_boundary = params.getBool("PreserveBoundary");
   p.keep_tips = params.getBool("KeepTips");
+  p.crease_angle = params.getFloat("CreaseAngle");
   p.fast = params.getBool("Fast");
   p.fit_to_input = params.getBool("FitToInput");
   if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);

@@ -13,7 +13,8 @@
 #  - the quads come out as polygonal layers that MeshLab's polygon filters accept;
 #  - MeshLab's own quads (its smart triangle pairing) are simplified;
 #  - a coloured layer's quads take its vertex colours, and its face colours;
-#  - a textured layer's quads take its texture.
+#  - a textured layer's quads take its texture;
+#  - a cube keeps its edges and corners with a crease angle, as with the CLI's.
 # Usage: meshlabserver_test.sh PLUGIN.so QUADSIMP_CLI REPO_DIR DATASETS_DIR
 set -euo pipefail
 plugin=$1 cli=$2 repo=$3 datasets=$4
@@ -34,7 +35,7 @@ for f in "Quad Mesh Simplification" "Convert to Pure Quad Mesh" "Compute Fitmaps
 done
 for p in "Adaptive (fitmaps)" "Target number of quads" "Automatic halting (adaptive)" \
          "Halting share (automatic halting)" "Fitmap tolerance tau" "Largest aspect (adaptive)" "Reach (adaptive)" \
-         "Preserve boundary" "Keep tips" "Fast (one pass)" "Fit vertices to the input" "Reference mesh" "Distance samples"; do
+         "Preserve boundary" "Keep tips" "Crease angle" "Fast (one pass)" "Fit vertices to the input" "Reference mesh" "Distance samples"; do
   grep -q "$p" "$work/dump.txt" || fail "parameter '$p' missing from meshlabserver -d"
 done
 
@@ -281,7 +282,9 @@ fi
 cat >"$work/others.mlx" <<'MLX'
 <!DOCTYPE FilterScript>
 <FilterScript>
- <filter name="Convert to Pure Quad Mesh"/>
+ <filter name="Convert to Pure Quad Mesh">
+  <Param name="CreaseAngle" type="RichFloat" value="0"/>
+ </filter>
  <filter name="Compute Fitmaps">
   <Param name="Tau" type="RichFloat" value="0.05"/>
  </filter>
@@ -314,7 +317,10 @@ planarity='<filter name="Per Face Quality according to Triangle shape and aspect
    enum_val1="inradius/circumradius" enum_val2="Mean ratio" enum_val3="Area" enum_val4="Texture Angle Distortion"
    enum_val5="Texture Area Distortion" enum_val6="Polygonal planarity (max)" enum_val7="Polygonal planarity (relative)"/>
  </filter>'
-for first in "${simplification/value=\"3000\"/value=\"500\"}" '<filter name="Convert to Pure Quad Mesh"/>'; do
+convert='<filter name="Convert to Pure Quad Mesh">
+  <Param name="CreaseAngle" type="RichFloat" value="0"/>
+ </filter>'
+for first in "${simplification/value=\"3000\"/value=\"500\"}" "$convert"; do
   printf '<!DOCTYPE FilterScript>\n<FilterScript>\n%s\n %s\n</FilterScript>\n' "$first" "$planarity" >"$work/planar.mlx"
   if server -i "$work/torus.ply" -o "$work/planar.ply" -m ff fq -s "$work/planar.mlx" -l "$work/planar.log" &&
      grep -q "property float quality" "$work/planar.ply"; then
@@ -496,6 +502,67 @@ if server -i "$work/tex/lonlat.ply" -o "$work/tex/again.ply" -m wt -s "$work/tex
   echo "ok: a second result's texture does not replace the first's"
 else
   fail "a second result's texture replaced the first's"; cat "$work/server.log"
+fi
+
+# 11. A crease angle from a script: a cube keeps its 8 corners and its edges (no distance
+#     to it), as the CLI's --crease-angle does; the conversion alone pairs nothing across.
+python3 - "$work/cube.ply" <<'PY'
+import sys
+n = 12
+pos, faces, index = [], [], {}
+def vid(p):
+    if p not in index:
+        index[p] = len(pos)
+        pos.append(p)
+    return index[p]
+for axis in range(3):
+    for side in (0, 1):
+        u, v = (axis + 1) % 3, (axis + 2) % 3
+        for j in range(n):
+            for i in range(n):
+                def at(a, b):
+                    p = [0, 0, 0]
+                    p[axis], p[u], p[v] = side, a / n, b / n
+                    return vid(tuple(p))
+                a, b, c, d = at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)
+                faces += [(a, b, c), (a, c, d)] if side else [(a, c, b), (a, d, c)]
+with open(sys.argv[1], "w") as f:
+    f.write(f"ply\nformat ascii 1.0\nelement vertex {len(pos)}\nproperty float x\nproperty float y\nproperty float z\n"
+            f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
+    f.writelines(f"{x} {y} {z}\n" for x, y, z in pos)
+    f.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
+PY
+sed -e 's/name="TargetFaceNum" type="RichInt" value="[0-9]*"/name="TargetFaceNum" type="RichInt" value="100"/' \
+    -e 's/name="CreaseAngle" type="RichFloat" value="[0-9.]*"/name="CreaseAngle" type="RichFloat" value="30"/' \
+    "$script" >"$work/crease.mlx"
+"$cli" simplify "$work/cube.ply" "$work/cube_cli.ply" --faces 100 --crease-angle 30 -q >/dev/null
+if grep -q 'name="CreaseAngle" type="RichFloat" value="30"' "$work/crease.mlx" &&
+   server -i "$work/cube.ply" -o "$work/cube_quads.ply" -m ff -s "$work/crease.mlx" &&
+   "$cli" stats "$work/cube.ply" "$work/cube_quads.ply" --json --samples 20000 >"$work/cube.json" &&
+   "$cli" stats "$work/cube.ply" "$work/cube_cli.ply" --json --samples 20000 >"$work/cube_cli.json" &&
+   python3 - "$work/cube_cli.json" "$work/cube.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+for k in ("faces", "vertices", "max_valence", "regular_percent"):
+    assert a[k] == b[k], (k, a[k], b[k])
+assert b["hausdorff_e3"] < 1e-3, b["hausdorff_e3"]
+print("ok: crease angle 30: plugin and CLI give", b["faces"], "quads on the cube, Hausdorff", b["hausdorff_e3"])
+PY
+then
+  :
+else
+  fail "the crease angle did not keep the cube's edges as the CLI does"; cat "$work/server.log"
+fi
+printf '<!DOCTYPE FilterScript>\n<FilterScript>\n %s\n</FilterScript>\n' \
+  "${convert/value=\"0\"/value=\"30\"}" >"$work/crease_convert.mlx"
+if server -i "$work/cube.ply" -o "$work/cube_converted.ply" -m ff -s "$work/crease_convert.mlx" -l "$work/crease_convert.log" &&
+   "$cli" stats "$work/cube.ply" "$work/cube_converted.ply" --json --samples 20000 >"$work/cube_conv.json" &&
+   [ "$(json "$work/cube_conv.json" faces)" = 864 ] &&
+   python3 -c "import json,sys; sys.exit(0 if json.load(open(sys.argv[1]))['hausdorff_e3'] < 1e-3 else 1)" \
+     "$work/cube_conv.json"; then
+  echo "ok: the conversion with a crease angle keeps the cube flat on its sides: 864 quads"
+else
+  fail "the conversion with a crease angle"; cat "$work/server.log"
 fi
 
 if [ "$failures" -gt 0 ]; then echo "$failures failed"; exit 1; fi

@@ -702,6 +702,55 @@ def test_largest_aspect_reaches_the_loop_as_the_clis_does(bunny_path, cli, tmp_p
     assert stretched["rms_e3"] < 0.97 * square["rms_e3"]
 
 
+def cube_ply(path, n=12):
+    """A unit cube of n x n cells a side, each split in two, as PLY at `path`."""
+    pos, faces, index = [], [], {}
+    def vid(p):
+        if p not in index:
+            index[p] = len(pos)
+            pos.append(p)
+        return index[p]
+    for axis in range(3):
+        for side in (0, 1):
+            u, v = (axis + 1) % 3, (axis + 2) % 3
+            for j in range(n):
+                for i in range(n):
+                    def at(a, b):
+                        p = [0.0, 0.0, 0.0]
+                        p[axis], p[u], p[v] = float(side), a / n, b / n
+                        return vid(tuple(p))
+                    a, b, c, d = at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)
+                    faces += [(a, b, c), (a, c, d)] if side else [(a, c, b), (a, d, c)]
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.array(pos), face_matrix=np.array(faces, dtype=np.int32)))
+    ms.save_current_mesh(str(path))
+    return str(path)
+
+
+def test_a_crease_angle_keeps_a_cubes_edges_as_the_cli_does(cli, tmp_path):
+    # creaseangle=30: the cube's corners stay corners of the quads and its edges stay sharp
+    # (no distance to it), as with the CLI's --crease-angle 30; without, they round off.
+    cube = cube_ply(tmp_path / "cube.ply")
+    kept, stats = plugin_and_cli(cube, cli, tmp_path, {"targetfacenum": 100, "creaseangle": 30.0},
+                                 ["--faces", "100", "--crease-angle", "30"])
+    rounded, _ = plugin_and_cli(cube, cli, tmp_path, {"targetfacenum": 100}, ["--faces", "100"])
+    assert kept["hausdorff_e3"] < 1e-3 and stats["hausdorff_e3"] < 1e-3
+    assert rounded["hausdorff_e3"] > 10
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(cube)
+    ms.meshing_quad_mesh_simplification(targetfacenum=100, creaseangle=30.0)
+    v = ms.current_mesh().vertex_matrix()
+    corners = np.all((np.abs(v) < 1e-6) | (np.abs(v - 1) < 1e-6), axis=1)
+    assert corners.sum() == 8
+    # The conversion alone: quads flat on the cube's sides.
+    ms.load_new_mesh(cube)
+    ms.meshing_tri_to_pure_quad(creaseangle=30.0)
+    assert is_pure_quad(ms.current_mesh())
+    assert ms.current_mesh().face_number() == 2 * 864
+    with pytest.raises(pymeshlab.PyMeshLabException):
+        ms.meshing_tri_to_pure_quad(creaseangle=200.0)
+
+
 def test_bad_input_raises_a_python_exception():
     # Last in the file: once a filter has raised, pymeshlab 2025.7 can print no filter log
     # (verbose) for the rest of the process, MeshLab's own filters' alike (seen in plain

@@ -309,6 +309,7 @@ TEST(PluginParams, the_dialogs_defaults_are_the_clis) {
   EXPECT_EQ(p.m_slack, cli.m_slack);
   EXPECT_EQ(p.preserve_boundary, cli.preserve_boundary);
   EXPECT_EQ(p.keep_tips, cli.keep_tips);
+  EXPECT_EQ(p.crease_angle, cli.crease_angle);
   EXPECT_EQ(p.fast, cli.fast);
   EXPECT_EQ(p.fit_to_input, cli.fit_to_input);
   // Every parameter the dialog shows is read, and nothing else.
@@ -321,8 +322,9 @@ TEST(PluginParams, each_parameter_reaches_its_own_field) {
   Parameters list(kSimplify);
   list["Adaptive"] = 1, list["TargetFaceNum"] = 321, list["HaltShare"] = 0.5, list["Tau"] = 0.125;
   list["MaxAspect"] = 2, list["Reach"] = 0.25, list["PreserveBoundary"] = 1, list["KeepTips"] = 1;
-  list["Fast"] = 1, list["FitToInput"] = 1, list["TargetPerc"] = 0.375;
+  list["Fast"] = 1, list["FitToInput"] = 1, list["TargetPerc"] = 0.375, list["CreaseAngle"] = 42;
   SimplifyParams p = simplify_params_of(list);
+  EXPECT_EQ(p.crease_angle, 42);
   EXPECT_TRUE(p.adaptive);
   EXPECT_FALSE(p.auto_halt);
   EXPECT_EQ(p.target_faces, 321u);
@@ -505,10 +507,47 @@ TEST(PluginRunner, simplification_logs_what_it_did_and_matches_the_pipeline) {
 
   // Conversion alone: the layer's triangles as quads, and how many paired.
   Outcome c;
-  const QuadMesh converted = run_conversion(layer, "ball", c).mesh;
+  const QuadMesh converted = run_conversion(layer, "ball", 0, c).mesh;
   EXPECT_EQ(c.values.at("faces"), converted.n_faces());
   EXPECT_GT(c.values.at("pairing_rate"), 0.9);
   EXPECT_NO_THROW(validate(converted));
+}
+
+TEST(PluginRunner, a_crease_angle_reaches_the_conversion_and_the_simplification) {
+  // A cube: its edges are kept with the crease angle (its corners stay corners of the
+  // quads), the CLI's way, and rounded off without.
+  const TriMesh t = tri_cube(12);
+  const MeshFile layer{t.positions, t.faces, {}};
+  auto corners = [](const QuadMesh& q) {
+    int n = 0;
+    for (Index v = 0; v < q.vertex_capacity(); ++v) {
+      int sides = 0;
+      for (int k = 0; k < 3; ++k) sides += q.position(v)[k] == 0.0 || q.position(v)[k] == 1.0;
+      n += q.is_vertex_live(v) && sides == 3;
+    }
+    return n;
+  };
+  SimplifyParams params;
+  params.target_faces = 100;
+  for (double angle : {0.0, 30.0}) {
+    params.crease_angle = angle;
+    Outcome o;
+    const QuadMesh q = run_simplification(layer, "cube", params, {}, o).mesh;
+    EXPECT_EQ(corners(q), angle > 0 ? 8 : 0);
+    Input in = prepare_input(layer, "cube", convert_options(params));
+    const ReferenceSurface ref(std::move(in.reference));
+    simplify_input(in, ref, params);
+    EXPECT_EQ(quads_of(in.quads), quads_of(q));
+  }
+  // The conversion: a roof's ridge at 24 degrees is paired across without a crease angle.
+  TriMesh roof = tri_grid(9, 9);
+  for (Vec3& p : roof.positions) p.z() = 0.15 * (1 - std::abs(p.x() + p.y() - 1));
+  Outcome plain, kept;
+  const Index across = run_conversion({roof.positions, roof.faces, {}}, "roof", 0, plain).mesh.n_faces();
+  const Index apart = run_conversion({roof.positions, roof.faces, {}}, "roof", 15, kept).mesh.n_faces();
+  EXPECT_EQ(across, 81u);
+  EXPECT_EQ(apart, 82u);  // a ridge edge split: 81 triangles on either side
+  EXPECT_THROW(run_conversion({roof.positions, roof.faces, {}}, "roof", 180, kept), std::invalid_argument);
 }
 
 }  // namespace
