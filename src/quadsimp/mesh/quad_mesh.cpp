@@ -279,6 +279,15 @@ bool share_a_face(const QuadMesh& m, Index p, Index q, Index skip_a, Index skip_
   return shared;
 }
 
+bool on_shared_diagonal(const QuadMesh& m, Index v, Index except) {
+  bool shared = false;
+  m.for_each_outgoing(v, [&](Index h) {
+    const Index o = m.to(QuadMesh::next(h));
+    shared = shared || (o != except && share_a_face(m, v, o, QuadMesh::face(h)));
+  });
+  return shared;
+}
+
 Index two_quad_piece_partner(const QuadMesh& m, Index f) {
   const Index t0 = m.twin(QuadMesh::halfedge(f, 0));
   if (t0 == kNone) return kNone;

@@ -153,6 +153,10 @@ void validate(const QuadMesh& mesh);
 //! Whether p and q are corners of one face other than the faces skip_a and skip_b.
 bool share_a_face(const QuadMesh& mesh, Index p, Index q, Index skip_a = kNone, Index skip_b = kNone);
 
+//! Whether v and the opposite corner of one of its faces (but `except`) share another face
+//! too: whether v is an end of a shared diagonal (shared_diagonals()).
+bool on_shared_diagonal(const QuadMesh& mesh, Index v, Index except = kNone);
+
 //! The other face of f's piece when that piece is f and one other face on the same four
 //! corners (sharing all four edges: what a tetrahedron converts to, the least a closed
 //! quad mesh has), else kNone.

@@ -6,7 +6,8 @@
 namespace qs {
 
 //! Diagonal collapse [Bozzo et al. 2010, Fig. 1 left]: quad f = (a, b, c, d), with
-//! a = corner k (k = 0 or 1), loses its diagonal a-c; a and c merge into one vertex.
+//! a = corner k, loses its diagonal a-c; a and c merge into one vertex. k = 0 or 1 names
+//! each diagonal; k + 2 names the same one from its other end, which then survives.
 //!
 //!        d                 d
 //!      /   \               |

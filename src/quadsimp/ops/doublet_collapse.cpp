@@ -24,11 +24,12 @@ bool can_collapse_doublet(const QuadMesh& m, Index s) {
   return detail::link_condition(m, c.p, c.r, c.x, c.y, s);
 }
 
-Index collapse_doublet(QuadMesh& m, Index s, const Vec3& position) {
+Index collapse_doublet(QuadMesh& m, Index s, const Vec3& position, Index survivor) {
   assert(can_collapse_doublet(m, s));
-  // remove_doublet() leaves the face (p, x, r, y), p at corner 0.
+  const Index r = doublet_corners(m, s).r;
+  // remove_doublet() leaves the face (p, x, r, y), p at corner 0 and r at corner 2.
   const Index f = remove_doublet(m, s);
-  return collapse_diagonal(m, f, 0, position);
+  return collapse_diagonal(m, f, survivor == r ? 2 : 0, position);
 }
 
 }  // namespace qs

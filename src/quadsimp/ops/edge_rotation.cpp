@@ -85,7 +85,7 @@ bool rotation_folds(const QuadMesh& m, Index h, Rotation r, Index except, bool b
   return false;
 }
 
-void rotate_edge(QuadMesh& m, Index h, Rotation r, Index doublet) {
+void rotate_edge(QuadMesh& m, Index h, Rotation r, [[maybe_unused]] Index doublet) {
   assert(can_rotate_edge(m, h, r, doublet));
   const Hexagon x = hexagon(m, h);
   const Index g = m.twin(h);

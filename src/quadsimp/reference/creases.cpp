@@ -102,17 +102,21 @@ Creases::Creases(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& a
       if (!used[edges[i]]) walk(v, edges[i]);
 }
 
+Creases::Place Creases::place_of_vertex(Index v) const {
+  Place place;
+  if (empty() || v >= corner_.size()) return place;
+  place.corner = corner_[v];
+  place.curve = vertex_curve_[v];
+  if (place.curve != kNone) place.s = double(vertex_index_[v]);
+  return place;
+}
+
 Creases::Place Creases::place_of(const TriMesh& mesh, Index face, const Vec3& p, double tolerance) const {
   Place place;
   if (empty() || face >= mesh.n_faces()) return place;
   const auto& t = mesh.faces[face];
   for (Index v : t)
-    if ((p - mesh.positions[v]).norm() <= tolerance) {
-      place.corner = corner_[v];
-      place.curve = vertex_curve_[v];
-      if (place.curve != kNone) place.s = double(vertex_index_[v]);
-      return place;
-    }
+    if ((p - mesh.positions[v]).norm() <= tolerance) return place_of_vertex(v);
   for (Index k = 0; k < 3; ++k) {
     const Index e = 3 * face + k;
     if (edge_curve_[e] == kNone) continue;

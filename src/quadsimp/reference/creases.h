@@ -51,6 +51,8 @@ class Creases {
   //! The place of p, a point on triangle `face` of M0 (or at one of its corners), within
   //! `tolerance` of a corner or a crease edge of that triangle.
   Place place_of(const TriMesh& mesh, Index face, const Vec3& p, double tolerance) const;
+  //! The place of M0's vertex v.
+  Place place_of_vertex(Index v) const;
 
   //! The point of curve c nearest p, among those from parameter s back by `back` and
   //! ahead by `ahead` (an open curve's ends bound both), with its parameter and its place

@@ -24,6 +24,9 @@ constexpr double kCreaseShort = 1.3;
 
 // The mesh's vertices are M0's own at the start, or midpoints of its edges (the
 // conversion's splits): each lies on M0's corners and crease edges exactly, up to rounding.
+// A converted mesh's vertices are M0's under the same ids, which tells apart the copies of
+// a vertex that cleaning split (a non-manifold vertex: one copy per fan, all at one place,
+// and the closest point may lie on another copy's triangles); others are found by place.
 void Simplifier::mark_creases() {
   const Creases* creases = opt_.creases;
   if (!creases || creases->empty()) return;
@@ -33,9 +36,16 @@ void Simplifier::mark_creases() {
   const double tolerance = 1e-7 * ref_.bbox_diagonal();
   for (Index v = 0; v < m_.vertex_capacity(); ++v) {
     if (!m_.is_vertex_live(v)) continue;
-    const SurfacePoint s = ref_.closest_within(m_.position(v), 0.0);
-    if (!s.found()) continue;
-    const Creases::Place place = creases->place_of(ref_.mesh(), s.face, m_.position(v), tolerance);
+    Creases::Place place;
+    if (v < ref_.mesh().n_vertices() && ref_.mesh().positions[v] == m_.position(v)) {
+      place = creases->place_of_vertex(v);
+    } else {
+      const SurfacePoint s = ref_.closest_within(m_.position(v), 0.0);
+      if (!s.found()) continue;
+      place = creases->place_of(ref_.mesh(), s.face, m_.position(v), tolerance);
+      // Curves end at M0's border: a border vertex found inside one is another copy's.
+      if (m_.is_border_vertex(v) && place.curve != kNone) continue;
+    }
     if (place.corner) {
       held_[v] |= kHeldCorner;
       on_crease_[v] = 1;
@@ -211,6 +221,7 @@ bool Simplifier::remove_crease_doublet(Index b) {
   for (Index x : {c.p, c.r})
     if (!(held_[x] & kHeldCorner) && crease_[x] != crease_[b]) return false;
   if ((held_[c.p] & held_[c.r] & kHeldCorner) != 0) return false;
+  if (on_shared_diagonal(m_, c.p, c.r) && on_shared_diagonal(m_, c.r, c.p)) return false;
   if (opt_.max_valence > 0 && m_.valence(c.p) + m_.valence(c.r) - 4 > opt_.max_valence) {
     ++rep_.refused_valence;
     return false;
@@ -238,7 +249,9 @@ bool Simplifier::remove_crease_doublet(Index b) {
     return false;
   }
   const char held = held_[c.p] | held_[c.r];
-  const Index v = collapse_doublet(m_, b, pos);
+  // A corner keeps its id; else the neighbour on a shared diagonal (the conversion's, at a
+  // crease midpoint), which then stays the same pair. Both on one: refused above.
+  const Index v = collapse_doublet(m_, b, pos, keep == c.r || on_shared_diagonal(m_, c.r, c.p) ? c.r : c.p);
   held_[v] = held;
   inherit(v, keep);
   record_foot(v, foot);

@@ -219,6 +219,7 @@ Simplifier::Verdict Simplifier::check_collapse(Index f, Index k, Vec3& pos, Surf
   if (!crease_.empty()) {
     const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
     if (joins_pinned(a, c) || joins_pinned(c, a)) return Verdict::Topology;
+    if (on_shared_diagonal(m_, a, c) && on_shared_diagonal(m_, c, a)) return Verdict::Topology;
   }
   if (exceeds_valence(f, k)) return Verdict::Valence;
   if (!place(f, k, pos, foot)) return Verdict::Geometry;
@@ -428,11 +429,16 @@ void Simplifier::requeue_region() {
 
 void Simplifier::cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot) {
   const Index b = m_.vertex(f, k + 1), c = m_.vertex(f, k + 2), d = m_.vertex(f, k + 3);
-  const char held = held_[m_.vertex(f, k)] | held_[c];
+  const Index a = m_.vertex(f, k);
+  const char held = held_[a] | held_[c];
   const bool c_kept = pinned(c);  // place() kept c's place (merge_keeps_tip())
-  const Index v = collapse_diagonal(m_, f, k, pos);
+  // With creases, the end on a shared diagonal keeps its id, so that the diagonal stays
+  // the same pair (check_collapse() refuses where both are on one): the conversion leaves
+  // many where the parts between creases pair up on their own.
+  const bool c_id = !crease_.empty() && on_shared_diagonal(m_, c, a);
+  const Index v = collapse_diagonal(m_, f, c_id ? k + 2 : k, pos);
   held_[v] = held;
-  if (c_kept) inherit(v, c);
+  if (c_kept != c_id) inherit(v, c_kept ? c : a);
   record_foot(v, foot);
   ++rep_.collapses;
   after_change({v, b, d});
