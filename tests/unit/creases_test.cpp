@@ -410,3 +410,23 @@ TEST(Creases, a_sheet_touching_a_crease_at_one_vertex_keeps_its_border) {
     EXPECT_NO_THROW(simplified(ref, target, 30, &r)) << target;
   }
 }
+
+TEST(Creases, coarse_shapes_at_low_angles_keep_every_invariant) {
+  // Where most edges are creases (a coarse sphere, torus or spiky ball at 10 to 45
+  // degrees): the conversion's flat quads, its shared diagonals and crease doublets
+  // everywhere. Every change is checked (simplified()).
+  const std::vector<TriMesh> shapes = {tri_sphere(6, 10), tri_torus(8, 12), spiky_sphere(10, 16, 0.6, 0.3),
+                                       cad_cylinder(12, 3, 1.0), roof(9, 0.15)};
+  int runs = 0;
+  for (const TriMesh& t : shapes) {
+    const ReferenceSurface ref(t);
+    const Index quads = tri_to_quad(ref.mesh()).n_faces();
+    for (double angle : {10.0, 20.0, 45.0})
+      for (Index target : {quads / 3, quads / 10}) {
+        SimplifyReport r;
+        ASSERT_NO_THROW(simplified(ref, std::max<Index>(target, 1), angle, &r)) << runs << " angle " << angle;
+        ++runs;
+      }
+  }
+  EXPECT_EQ(runs, 30);
+}

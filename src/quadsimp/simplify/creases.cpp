@@ -278,6 +278,7 @@ bool Simplifier::absorb_far_corners(Index b) {
     }
     cycle(f, k, pos, foot);
     any = true;
+    if (!m_.is_vertex_live(b)) break;  // the cleaning after it took b
     if (!is_doublet(m_, b)) {
       // The other face, still straight at b, is the one whose far corner b takes next.
       Index straight = kNone;
