@@ -17,8 +17,13 @@ namespace {
 
 // A crease vertex is taken out when its two crease edges add up to less than this many
 // mu: border coarsening's measure (border.cpp), for the same reason. Without it a crease
-// keeps its input's vertices, and the quads along it theirs.
-constexpr double kCreaseShort = 1.3;
+// keeps its input's vertices, and the quads along it theirs. Where the crease runs on
+// straight (turning by under kStraight), it loses no shape with fewer vertices, and 1.6
+// there gave 81.1% regular vertices instead of 78.0% over five CAD parts at four counts
+// (bench/creases.py's, 200 to 1,000 quads), RMS distance from 5% lower to 15% higher on
+// the three with curved creases (1.6 everywhere: 81.7%, but 15 to 43% higher).
+constexpr double kCreaseShort = 1.3, kStraightCreaseShort = 1.6;
+const double kStraight = std::cos(5 * M_PI / 180);
 
 }  // namespace
 
@@ -163,12 +168,15 @@ bool Simplifier::coarsen_creases() {
 bool Simplifier::remove_crease_vertex(Index b) {
   if (is_doublet(m_, b)) return remove_crease_doublet(b) || absorb_far_corners(b);
   if (m_.valence(b) > 4) return false;
-  double length = 0;
-  int along = 0;
+  Vec3 along[2];
+  int n = 0;
   m_.for_each_outgoing(b, [&](Index h) {
-    if (pinned(m_.to(h))) length += (m_.position(m_.to(h)) - m_.position(b)).norm(), ++along;
+    if (pinned(m_.to(h)) && n++ < 2) along[n - 1] = m_.position(m_.to(h)) - m_.position(b);
   });
-  if (along != 2 || length >= kCreaseShort * mu_at(b)) return false;
+  if (n != 2) return false;
+  const double length = along[0].norm() + along[1].norm();
+  const bool straight = -along[0].dot(along[1]) > kStraight * along[0].norm() * along[1].norm();
+  if (length >= (straight ? kStraightCreaseShort : kCreaseShort) * mu_at(b)) return false;
   // Each edge across the crease at b rotates away from it, until b has one face on
   // either side; every rotation is undone, the last first, unless the collapse follows.
   struct Undo {

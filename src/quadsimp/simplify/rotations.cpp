@@ -33,7 +33,7 @@ bool Simplifier::try_rotate(Index h) {
   if (!m_.is_face_live(QuadMesh::face(h)) || m_.twin(h) == kNone) return false;
   const Index g = m_.twin(h);
   const Index u = m_.from(h), w = m_.to(h);
-  if (!crease_.empty() && pinned(u) && pinned(w)) return false;  // a crease's own edge
+  if (!crease_.empty() && may_be_crease_edge(u, w)) return false;
   const Index x1 = m_.to(QuadMesh::next(h)), x2 = m_.from(QuadMesh::prev(h));
   const Index y1 = m_.to(QuadMesh::next(g)), y2 = m_.from(QuadMesh::prev(g));
   // Energy [paper]: sum over the hexagon of |D(v) - target|. Ties are broken by the sum

@@ -225,6 +225,12 @@ class Simplifier {
   void inherit(Index survivor, Index from);
   bool joins_pinned(Index keep, Index gone) const;
   bool creates_pinned_edge(Index h, Rotation r) const;
+  // Whether the edge u-w may run along a crease: both ends on one curve, or at a corner and
+  // on a curve or corner. Two ends on different curves are joined across a part's corner.
+  bool may_be_crease_edge(Index u, Index w) const {
+    if (!pinned(u) || !pinned(w)) return false;
+    return (crease_[u] != kNone && crease_[u] == crease_[w]) || (held_[u] & kHeldCorner) || (held_[w] & kHeldCorner);
+  }
   int target_valence_of_corner(Index v) const;
   void slide_on_crease(Index v, const Vec3& target);
   // How far crease vertex v may slide along its curve before it meets a neighbour on it.
