@@ -37,6 +37,32 @@ double quad_quality(const std::vector<Vec3>& p, const std::array<Index, 4>& q) {
   return s / 4;
 }
 
+// Splits triangle x at its edge j (corner j to j + 1) with vertex m on that edge: x keeps
+// the half from the edge's start, a new triangle (returned) takes the other. With `adj`,
+// the neighbours are kept up to date, the split edge's halves getting none (a border, or a
+// crease: `crease`, when given, marks them `split_crease` and keeps the others' marks).
+Index split_triangle(TriMesh& t, Index x, Index j, Index m, std::vector<std::array<Index, 3>>* adj = nullptr,
+                     std::vector<char>* crease = nullptr, char split_crease = 0) {
+  const Index a = t.faces[x][j], b = t.faces[x][(j + 1) % 3], c = t.faces[x][(j + 2) % 3];
+  const Index z = t.n_faces();
+  t.faces[x] = {a, m, c};
+  t.faces.push_back({m, b, c});
+  if (adj) {
+    const Index next = (*adj)[x][(j + 1) % 3], prev = (*adj)[x][(j + 2) % 3];
+    (*adj)[x] = {kNone, z, prev};
+    adj->push_back({kNone, next, x});
+    if (next != kNone)
+      for (Index& y : (*adj)[next])
+        if (y == x) y = z;
+  }
+  if (crease && !crease->empty()) {
+    const char next = (*crease)[3 * x + (j + 1) % 3], prev = (*crease)[3 * x + (j + 2) % 3];
+    (*crease)[3 * x] = split_crease, (*crease)[3 * x + 1] = 0, (*crease)[3 * x + 2] = prev;
+    crease->insert(crease->end(), {split_crease, next, 0});
+  }
+  return z;
+}
+
 // Per component (`comp`, with `count` triangles each), its longest border edge (3 * face +
 // corner) when its triangle count is odd, else kNone: where fix_parity() splits it.
 std::vector<Index> longest_odd_border(const TriMesh& t, const std::vector<std::array<Index, 3>>& adj,
@@ -73,12 +99,8 @@ Index fix_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj) {
     // An odd closed component cannot exist (3F = 2E); clean() guarantees manifoldness.
     if (longest[c] == kNone) throw TopologyError("tri_to_quad: odd closed component");
     const Index f = longest[c] / 3, k = longest[c] % 3;
-    const auto tri = t.faces[f];
-    const Index a = tri[k], b = tri[(k + 1) % 3], apex = tri[(k + 2) % 3];
-    const Index m = t.n_vertices();
-    t.positions.push_back(0.5 * (t.positions[a] + t.positions[b]));
-    t.faces[f] = {a, m, apex};
-    t.faces.push_back({m, b, apex});
+    t.positions.push_back(0.5 * (t.positions[t.faces[f][k]] + t.positions[t.faces[f][(k + 1) % 3]]));
+    split_triangle(t, f, k, t.n_vertices() - 1);
     ++splits;
   }
   adj = triangle_adjacency(t);
@@ -156,9 +178,8 @@ Index fix_crease_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj, doub
       Index k = 0;
       while (t.faces[f][k] != a) ++k;
       const Index c = t.faces[f][(k + 2) % 3];
-      t.faces[f] = {a, m, c};
-      t.faces.push_back({m, b, c});
-      if (auto it = holder.find({b, c}); it != holder.end()) it->second = t.n_faces() - 1;
+      const Index z = split_triangle(t, f, k, m);
+      if (auto it = holder.find({b, c}); it != holder.end()) it->second = z;
     }
   }
   adj = triangle_adjacency(t);
@@ -264,24 +285,8 @@ Index pair_through_blossoms(const std::vector<std::array<Index, 3>>& adj, std::v
 void split_border_and_pair(TriMesh& t, std::vector<std::array<Index, 3>>& adj, std::vector<char>& crease,
                            std::vector<Index>& mate, Index y) {
   const Index k = border_edge(adj, crease, y);
-  if (!crease.empty()) {
-    // The halves (a, m, c) and (m, b, c) keep the crease marks of c-a and b-c.
-    const char bc = crease[3 * y + (k + 1) % 3], ca = crease[3 * y + (k + 2) % 3];
-    crease[3 * y] = 0, crease[3 * y + 1] = 0, crease[3 * y + 2] = ca;
-    crease.insert(crease.end(), {0, bc, 0});
-  }
-  const auto tri = t.faces[y];
-  const Index a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
-  const Index n_bc = adj[y][(k + 1) % 3], n_ca = adj[y][(k + 2) % 3];
-  const Index m = t.n_vertices(), z = t.n_faces();
-  t.positions.push_back(0.5 * (t.positions[a] + t.positions[b]));
-  t.faces[y] = {a, m, c};
-  t.faces.push_back({m, b, c});
-  adj[y] = {kNone, z, n_ca};
-  adj.push_back({kNone, n_bc, y});
-  if (n_bc != kNone)
-    for (Index& x : adj[n_bc])
-      if (x == y) x = z;
+  t.positions.push_back(0.5 * (t.positions[t.faces[y][k]] + t.positions[t.faces[y][(k + 1) % 3]]));
+  const Index z = split_triangle(t, y, k, t.n_vertices() - 1, &adj, &crease);
   mate[y] = z;
   mate.push_back(y);
 }
@@ -344,18 +349,7 @@ Index split_pairs_at_creases(TriMesh& t, const std::vector<std::array<Index, 3>>
     for (const Index x : {f, g}) {
       Index j = 0;
       while (full[x][j] != (x == f ? g : f)) ++j;
-      const Index a = t.faces[x][j], b = t.faces[x][(j + 1) % 3], c = t.faces[x][(j + 2) % 3];
-      const Index z = t.n_faces(), next = adj[x][(j + 1) % 3], prev = adj[x][(j + 2) % 3];
-      const char next_crease = crease[3 * x + (j + 1) % 3], prev_crease = crease[3 * x + (j + 2) % 3];
-      t.faces[x] = {a, m, c};
-      t.faces.push_back({m, b, c});
-      adj[x] = {kNone, z, prev};
-      adj.push_back({kNone, next, x});
-      if (next != kNone)
-        for (Index& y : adj[next])
-          if (y == x) y = z;
-      crease[3 * x] = 1, crease[3 * x + 1] = 0, crease[3 * x + 2] = prev_crease;
-      crease.insert(crease.end(), {1, next_crease, 0});
+      const Index z = split_triangle(t, x, j, m, &adj, &crease, 1);
       mate[x] = z;
       mate.push_back(x);
     }
