@@ -506,32 +506,7 @@ fi
 
 # 11. A crease angle from a script: a cube keeps its 8 corners and its edges (no distance
 #     to it), as the CLI's --crease-angle does; the conversion alone pairs nothing across.
-python3 - "$work/cube.ply" <<'PY'
-import sys
-n = 12
-pos, faces, index = [], [], {}
-def vid(p):
-    if p not in index:
-        index[p] = len(pos)
-        pos.append(p)
-    return index[p]
-for axis in range(3):
-    for side in (0, 1):
-        u, v = (axis + 1) % 3, (axis + 2) % 3
-        for j in range(n):
-            for i in range(n):
-                def at(a, b):
-                    p = [0, 0, 0]
-                    p[axis], p[u], p[v] = side, a / n, b / n
-                    return vid(tuple(p))
-                a, b, c, d = at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)
-                faces += [(a, b, c), (a, c, d)] if side else [(a, c, b), (a, d, c)]
-with open(sys.argv[1], "w") as f:
-    f.write(f"ply\nformat ascii 1.0\nelement vertex {len(pos)}\nproperty float x\nproperty float y\nproperty float z\n"
-            f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
-    f.writelines(f"{x} {y} {z}\n" for x, y, z in pos)
-    f.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
-PY
+python3 "$here/cube_ply.py" "$work/cube.ply" 12
 sed -e 's/name="TargetFaceNum" type="RichInt" value="[0-9]*"/name="TargetFaceNum" type="RichInt" value="100"/' \
     -e 's/name="CreaseAngle" type="RichFloat" value="[0-9.]*"/name="CreaseAngle" type="RichFloat" value="30"/' \
     "$script" >"$work/crease.mlx"

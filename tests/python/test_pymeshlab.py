@@ -703,28 +703,10 @@ def test_largest_aspect_reaches_the_loop_as_the_clis_does(bunny_path, cli, tmp_p
 
 
 def cube_ply(path, n=12):
-    """A unit cube of n x n cells a side, each split in two, as PLY at `path`."""
-    pos, faces, index = [], [], {}
-    def vid(p):
-        if p not in index:
-            index[p] = len(pos)
-            pos.append(p)
-        return index[p]
-    for axis in range(3):
-        for side in (0, 1):
-            u, v = (axis + 1) % 3, (axis + 2) % 3
-            for j in range(n):
-                for i in range(n):
-                    def at(a, b):
-                        p = [0.0, 0.0, 0.0]
-                        p[axis], p[u], p[v] = float(side), a / n, b / n
-                        return vid(tuple(p))
-                    a, b, c, d = at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)
-                    faces += [(a, b, c), (a, c, d)] if side else [(a, c, b), (a, d, c)]
-    ms = pymeshlab.MeshSet()
-    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.array(pos), face_matrix=np.array(faces, dtype=np.int32)))
-    ms.save_current_mesh(str(path))
-    return str(path)
+    """tests/integration/cube_ply.py's cube at `path`: its path."""
+    sys.path.insert(0, str(pathlib.Path(__file__).parents[1] / "integration"))
+    import cube_ply as cube
+    return cube.write(path, n)
 
 
 def test_a_crease_angle_keeps_a_cubes_edges_as_the_cli_does(cli, tmp_path):

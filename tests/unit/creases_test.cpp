@@ -112,6 +112,20 @@ void split_edge(TriMesh& t, const Vec3& pa, const Vec3& pb) {
   ASSERT_GE(split, 1);
 }
 
+// t's quads with creases at `angle`, checked whole: valid, every triangle paired, no
+// refinement, and every edge `on` tells a crease of is one of theirs.
+template <class On>
+QuadMesh converted_apart(const TriMesh& t, double angle, ConvertReport& report, On&& on) {
+  ConvertOptions o;
+  o.crease_angle_deg = angle;
+  QuadMesh q = tri_to_quad(t, o, &report);
+  validate(q);
+  EXPECT_FALSE(report.refined);
+  EXPECT_EQ(report.pairing_rate(), 1.0);
+  EXPECT_TRUE(crease_edges_are_quad_edges(t, q, on));
+  return q;
+}
+
 }  // namespace
 
 TEST(Creases, a_cube_has_twelve_curves_between_eight_corners) {
@@ -222,16 +236,10 @@ TEST(Creases, the_conversion_pairs_no_triangles_across_a_crease) {
   // and pairs the two triangles of each cell along the ridge. 81 triangles lie on either
   // side: one ridge edge is split so that each side pairs up on its own.
   const TriMesh t = roof(9, 0.15);
-  ConvertOptions with;
-  with.crease_angle_deg = 15;
   ConvertReport report;
-  const QuadMesh q = tri_to_quad(t, with, &report);
-  validate(q);
+  converted_apart(t, 15, report, on_ridge);
   EXPECT_EQ(report.crease_splits, 1u);
   EXPECT_EQ(report.parity_splits, 0u);
-  EXPECT_FALSE(report.refined);
-  EXPECT_EQ(report.pairing_rate(), 1.0);
-  EXPECT_TRUE(crease_edges_are_quad_edges(t, q, on_ridge));
   EXPECT_FALSE(crease_edges_are_quad_edges(t, tri_to_quad(t), on_ridge));
   // An angle above the roof's turns nothing into a crease.
   ConvertOptions blunt;
@@ -246,19 +254,13 @@ TEST(Creases, parts_between_creases_are_made_even_across_them) {
   TriMesh t = tri_cube(4);
   split_edge(t, Vec3(1, 1, 0.25), Vec3(1, 1, 0.5));
   split_edge(t, Vec3(0, 1, 0.5), Vec3(0, 1, 0.75));
-  ConvertOptions o;
-  o.crease_angle_deg = 30;
   ConvertReport report;
-  const QuadMesh q = tri_to_quad(t, o, &report);
-  validate(q);
+  converted_apart(t, 30, report, on_cube_edge);
   EXPECT_EQ(report.crease_splits, 2u);
   EXPECT_EQ(report.parity_splits, 0u);
   // Even, two sides still have no pairing of their own (their cells are split alike, and
   // a triangle was added to each at one end): a few pairs across creases are split.
   EXPECT_GT(report.crease_midpoints, 0u);
-  EXPECT_FALSE(report.refined);
-  EXPECT_EQ(report.pairing_rate(), 1.0);
-  EXPECT_TRUE(crease_edges_are_quad_edges(t, q, on_cube_edge));
 
   // Open and odd: a roof with a border edge split has 82 triangles on one side and 81 on
   // the other. The side with the longest border edge takes the oddness, whichever it is,
@@ -266,15 +268,10 @@ TEST(Creases, parts_between_creases_are_made_even_across_them) {
   TriMesh open = roof(9, 0.15);
   split_edge(open, open.positions[0], open.positions[1]);
   ASSERT_EQ(open.n_faces() % 2, 1u);
-  o.crease_angle_deg = 15;
-  const QuadMesh oq = tri_to_quad(open, o, &report);
-  validate(oq);
+  converted_apart(open, 15, report, on_ridge);
   EXPECT_EQ(report.crease_splits, 1u);
   EXPECT_EQ(report.crease_midpoints, 0u);
   EXPECT_EQ(report.parity_splits, 1u);
-  EXPECT_FALSE(report.refined);
-  EXPECT_EQ(report.pairing_rate(), 1.0);
-  EXPECT_TRUE(crease_edges_are_quad_edges(open, oq, on_ridge));
 }
 
 namespace {
