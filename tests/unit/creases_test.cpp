@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 
 #include "fixtures/shapes.h"
@@ -299,6 +300,18 @@ QuadMesh simplified(const ReferenceSurface& ref, Index target, double angle,
   return q;
 }
 
+// How many of q's edges join two vertices on the unit cube's edges without running along
+// one: a quad across a side from edge to edge, which no crease vertex may have.
+int shortcuts(const QuadMesh& q) {
+  int n = 0;
+  for (Index f = 0; f < q.face_capacity(); ++f)
+    for (Index k = 0; k < 4 && q.is_face_live(f); ++k) {
+      const Vec3 &a = q.position(q.vertex(f, k)), &b = q.position(q.vertex(f, k + 1));
+      n += on_cube_sides(a) >= 2 && on_cube_sides(b) >= 2 && !on_cube_edge(a, b);
+    }
+  return n;
+}
+
 // How many of the unit cube's corners are vertices of q.
 int cube_corners_kept(const QuadMesh& q) {
   int n = 0;
@@ -316,9 +329,16 @@ TEST(Creases, a_cube_keeps_its_edges_and_corners) {
   EXPECT_LE(q.n_faces(), 150u);
   EXPECT_GT(r.crease_collapses, 0u);
   EXPECT_EQ(cube_corners_kept(q), 8);
+  EXPECT_EQ(shortcuts(q), 0);
   const QuadQuality quality = quad_quality(q, &ref);
   EXPECT_EQ(quality.nonconvex_faces + quality.flipped_faces + quality.folded_faces, 0u);
   EXPECT_GT(quality.regular_percent, 60.0);
+  // Down to a few quads a side, where a quad could reach from edge to edge.
+  for (Index target : {60u, 30u}) {
+    const QuadMesh coarse = simplified(ref, target, 30);
+    EXPECT_EQ(cube_corners_kept(coarse), 8) << target;
+    EXPECT_EQ(shortcuts(coarse), 0) << target;
+  }
   // Every vertex on the cube and every quad flat on one side: no distance either way.
   // Without creases the smoothing rounds the edges off.
   const double kept = surface_distance(q, ref, 20000).hausdorff;
@@ -426,4 +446,29 @@ TEST(Creases, coarse_shapes_at_low_angles_keep_every_invariant) {
       }
   }
   EXPECT_EQ(runs, 30);
+}
+
+TEST(Creases, noisy_scans_keep_every_invariant) {
+  // Spheres, tori and an open half sphere with noise, at 20 and 30 degrees: many short
+  // creases, and the conversion's shared diagonals where their parts pair up on their own,
+  // which a collapse keeping a crease vertex's place under the other end's id once moved
+  // (the spheres and the torus of seed 6), and a doublet collapse keeping a corner's id
+  // (the half sphere, seed 0, and the torus of seed 2).
+  int runs = 0;
+  for (unsigned seed : {0u, 1u, 2u, 5u, 6u}) {
+    std::mt19937 rng(seed);
+    TriMesh t = seed == 0 ? open_below(tri_sphere(16, 24), 0.0) : seed % 2 ? tri_sphere(16, 24) : tri_torus(16, 24);
+    std::normal_distribution<double> noise(0, 0.01 + 0.005 * (seed % 6));
+    for (Vec3& p : t.positions) p += Vec3(noise(rng), noise(rng), noise(rng));
+    const ReferenceSurface ref(t);
+    const Index quads = tri_to_quad(ref.mesh()).n_faces();
+    for (double angle : {20.0, 30.0})
+      for (Index target : {quads / 4, quads / 10}) {
+        SimplifyReport r;
+        ASSERT_NO_THROW(simplified(ref, target, angle, &r)) << "seed " << seed << " angle " << angle;
+        EXPECT_GT(r.crease_vertices, 0u);
+        ++runs;
+      }
+  }
+  EXPECT_EQ(runs, 20);
 }
