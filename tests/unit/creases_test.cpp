@@ -16,6 +16,7 @@
 #include "quadsimp/mesh/clean.h"
 #include "quadsimp/metrics/metrics.h"
 #include "quadsimp/reference/creases.h"
+#include "quadsimp/simplify/pipeline.h"
 #include "quadsimp/simplify/simplify.h"
 
 using namespace qs;
@@ -471,4 +472,27 @@ TEST(Creases, noisy_scans_keep_every_invariant) {
       }
   }
   EXPECT_EQ(runs, 20);
+}
+
+TEST(Creases, a_run_creases_hold_short_of_its_target_says_so) {
+  // A coarse sphere at 10 degrees: nearly every edge a crease, nearly every vertex pinned.
+  const TriMesh t = tri_sphere(10, 16);
+  const ReferenceSurface ref(t);
+  SimplifyReport r;
+  const QuadMesh q = simplified(ref, 10, 10, &r);
+  const QuadQuality quality = quad_quality(q, &ref);
+  ASSERT_GT(q.n_faces(), 10u);
+  const std::string note = creases_note(r, quality, 10);
+  EXPECT_EQ(note.rfind(std::to_string(r.crease_vertices) + " of the result's " + std::to_string(quality.vertices) +
+                           " vertices lie on creases",
+                       0),
+            0u)
+      << note;
+  const auto notes = result_notes(r, quality, 10);
+  EXPECT_NE(std::find(notes.begin(), notes.end(), note), notes.end());
+  // Not when the run reached its target, nor with few crease vertices.
+  EXPECT_EQ(creases_note(r, quality, q.n_faces()), "");
+  SimplifyReport few = r;
+  few.crease_vertices = quality.vertices / 2 - 1;
+  EXPECT_EQ(creases_note(few, quality, 10), "");
 }

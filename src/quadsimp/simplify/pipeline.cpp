@@ -120,9 +120,18 @@ std::string holes_note(const QuadQuality& q) {
 
 std::vector<std::string> result_notes(const SimplifyReport& r, const QuadQuality& q, Index target_faces) {
   std::vector<std::string> notes;
-  for (std::string note : {target_shortfall(r, target_faces), defects_note(q, r.beyond_reach), holes_note(q)})
+  for (std::string note :
+       {target_shortfall(r, target_faces), defects_note(q, r.beyond_reach), holes_note(q), creases_note(r, q, target_faces)})
     if (!note.empty()) notes.push_back(std::move(note));
   return notes;
+}
+
+std::string creases_note(const SimplifyReport& r, const QuadQuality& q, Index target_faces) {
+  const bool short_of_it = target_faces > 0 ? r.faces > target_faces : r.ran_out;
+  if (!short_of_it || q.vertices == 0 || 2 * r.crease_vertices < q.vertices) return {};
+  return std::to_string(r.crease_vertices) + " of the result's " + std::to_string(q.vertices) +
+         " vertices lie on creases, where they stay, and hold it there; a larger crease angle keeps fewer (a coarse "
+         "or noisy mesh has edges that sharp all over)";
 }
 
 std::string defects_note(const QuadQuality& q, Index beyond_reach) {

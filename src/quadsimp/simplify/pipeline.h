@@ -88,8 +88,18 @@ std::string defects_note(const QuadQuality& quality, Index beyond_reach = 0);
 //! its vertices regular: neither gets the note.
 std::string holes_note(const QuadQuality& quality);
 
-//! The log's notes on a finished run, in order: target_shortfall(), defects_note() and
-//! holes_note(), those that have something to say. The CLI and the filters both log these.
+//! "" unless the run stopped short (above its target, or automatic halting out of
+//! collapses) with half or more of the result's vertices on creases (SimplifyParams::
+//! crease_angle); then one sentence for the log saying so, and that a larger angle keeps
+//! fewer. The CAD parts measured reach their targets
+//! with 9 to 45% there at 300 to 1,000 quads; pymeshlab's cow at 30 degrees stops at seven
+//! times its target with 77% there and 210 non-convex quads: a crease angle meant for a
+//! machined part, given to a coarse organic mesh, pins most of it.
+std::string creases_note(const SimplifyReport& report, const QuadQuality& quality, Index target_faces);
+
+//! The log's notes on a finished run, in order: target_shortfall(), defects_note(),
+//! holes_note() and creases_note(), those that have something to say. The CLI and the
+//! filters both log these.
 std::vector<std::string> result_notes(const SimplifyReport& report, const QuadQuality& quality, Index target_faces);
 
 //! The operations a run did, for a summary line: "N collapses, M rotations", with the
