@@ -319,8 +319,8 @@ bool Simplifier::place_between_on_crease(Index l, Index r, const Vec3& mid, Surf
   return foot.found();
 }
 
-// Every vertex on a curve lies at its parameter's point, and every corner at M0's corner
-// it started on (held, so it does not move); a crease vertex keeps a face on each side.
+// Every vertex on a curve lies at its parameter's point and has two faces at least
+// (corners are held: nothing moves them).
 void Simplifier::check_creases() const {
   const double tolerance = 1e-6 * ref_.bbox_diagonal();
   for (Index v = 0; v < m_.vertex_capacity(); ++v) {
