@@ -67,7 +67,9 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
   const Index pairs = chord.pairs();
   for (Index i = 0; i < pairs; ++i) {
     const Index l = chord.left[i], r = chord.right[i];
-    if (opt_.preserve_boundary && (m_.is_border_vertex(l) || m_.is_border_vertex(r))) {
+    // With creases, a shared diagonal at the end that goes would move (see cycle()).
+    if ((opt_.preserve_boundary && (m_.is_border_vertex(l) || m_.is_border_vertex(r))) ||
+        (!crease_.empty() && on_shared_diagonal(m_, r, l))) {
       ++rep_.refused_topology;
       return false;
     }
