@@ -496,3 +496,21 @@ TEST(Creases, a_run_creases_hold_short_of_its_target_says_so) {
   few.crease_vertices = quality.vertices / 2 - 1;
   EXPECT_EQ(creases_note(few, quality, 10), "");
 }
+
+TEST(Creases, a_crease_turning_sharply_has_a_corner_there) {
+  // The rims of a hexagonal prism at 75 degrees (its sides meet at 60, its caps at 90): each
+  // rim is a crease loop that turns by 60 degrees at each vertex with no other crease
+  // meeting it, so every rim vertex is a corner and each side of the hexagon a curve. A
+  // twelve-sided prism's rims turn by 30 degrees: two closed curves without corners.
+  const Creases hexagon = creases_of(cad_cylinder(6, 2, 1.0), 75);
+  EXPECT_EQ(hexagon.n_corners(), 12u);
+  ASSERT_EQ(hexagon.n_curves(), 12u);
+  for (Index i = 0; i < 12; ++i) {
+    EXPECT_FALSE(hexagon.closed(i));
+    EXPECT_EQ(hexagon.span(i), 1.0);
+  }
+  const Creases twelve = creases_of(cad_cylinder(12, 2, 1.0), 75);
+  EXPECT_EQ(twelve.n_corners(), 0u);
+  ASSERT_EQ(twelve.n_curves(), 2u);
+  EXPECT_TRUE(twelve.closed(0) && twelve.closed(1));
+}
