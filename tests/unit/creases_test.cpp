@@ -514,3 +514,34 @@ TEST(Creases, a_crease_turning_sharply_has_a_corner_there) {
   ASSERT_EQ(twelve.n_curves(), 2u);
   EXPECT_TRUE(twelve.closed(0) && twelve.closed(1));
 }
+
+TEST(Creases, short_loose_creases_of_a_scan_are_dropped) {
+  // A noisy sphere at 30 degrees: noise makes short creases that end in nothing at both
+  // ends. Kept, their vertices would stay at the input's spacing; they are dropped, and no
+  // curve shorter than four mean edges is left with both ends free.
+  std::mt19937 rng(3);
+  TriMesh t = tri_sphere(24, 36);
+  std::normal_distribution<double> noise(0, 0.02);
+  for (Vec3& p : t.positions) p += Vec3(noise(rng), noise(rng), noise(rng));
+  const Creases c = creases_of(t, 30);
+  ASSERT_GT(c.n_curves(), 0u);
+  double mean_edge = 0;
+  for (const auto& f : t.faces)
+    for (int k = 0; k < 3; ++k) mean_edge += (t.positions[f[k]] - t.positions[f[(k + 1) % 3]]).norm();
+  mean_edge /= 3.0 * t.n_faces();
+  std::map<Index, int> ends;  // how many curves end at each vertex
+  for (Index i = 0; i < c.n_curves(); ++i)
+    if (!c.closed(i)) ++ends[c.vertices(i).front()], ++ends[c.vertices(i).back()];
+  int loose = 0, kept_short = 0;
+  for (Index i = 0; i < c.n_curves(); ++i) {
+    if (c.closed(i)) continue;
+    const auto& v = c.vertices(i);
+    double length = 0;
+    for (std::size_t k = 0; k + 1 < v.size(); ++k) length += (t.positions[v[k + 1]] - t.positions[v[k]]).norm();
+    const bool free_ends = ends[v.front()] == 1 && ends[v.back()] == 1;
+    loose += free_ends && length < 4 * mean_edge;
+    kept_short += !free_ends && length < 4 * mean_edge;
+  }
+  EXPECT_EQ(loose, 0);
+  EXPECT_GT(kept_short, 0);  // short curves between junctions stay: they meet other creases
+}

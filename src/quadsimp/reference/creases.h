@@ -21,8 +21,9 @@ std::vector<char> crease_edges(const TriMesh& mesh, const std::vector<std::array
 //! between two corners, or round a closed loop. Corners are the crease vertices where the
 //! curves end or meet (one crease edge, three or more, or a crease reaching M0's border)
 //! and those where a curve turns by more than 45 degrees (a box's edge loop round a
-//! rounded corner has none; a bracket's L has one). The simplifier keeps corners where
-//! they are and slides the other crease vertices along their curves.
+//! rounded corner has none; a bracket's L has one). A curve shorter than four mean input
+//! edges whose ends meet no other crease (a scan's noise) is dropped. The simplifier keeps
+//! corners where they are and slides the other crease vertices along their curves.
 //!
 //! Points on a curve are given by a parameter s: segment i spans [i, i + 1] (vertex i at
 //! s = i); a closed curve's last segment ends back at vertex 0 (s = its segment count).
@@ -78,6 +79,8 @@ class Creases {
     std::vector<std::uint8_t> edge;
     bool closed = false;
   };
+  // Chains the crease edges `crease` marks into curves, and sets every member from them.
+  void chain(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency, const std::vector<char>& crease);
   // Segment i of curve c's point at t in [0, 1] from its start.
   CurvePoint on_segment(const TriMesh& mesh, const Curve& curve, Index i, double t) const;
   std::vector<Curve> curves_;
@@ -85,7 +88,7 @@ class Creases {
   std::vector<Index> edge_curve_, edge_segment_;
   // Per M0 vertex: a corner, or the curve it lies inside and its index along it (kNone).
   std::vector<char> corner_;
-  std::vector<Index> vertex_curve_, vertex_index_;
+  std::vector<Index> vertex_curve_, vertex_index_, crease_degree_;
   Index edges_ = 0, corners_ = 0;
 };
 
