@@ -141,6 +141,12 @@ void Creases::chain(const TriMesh& mesh, const std::vector<std::array<Index, 3>>
       if (!used[edges[i]]) walk(v, edges[i]);
 }
 
+std::vector<char> Creases::edge_flags() const {
+  std::vector<char> flags(edge_curve_.size(), 0);
+  for (std::size_t e = 0; e < flags.size(); ++e) flags[e] = edge_curve_[e] != kNone;
+  return flags;
+}
+
 Creases::Place Creases::place_of_vertex(Index v) const {
   Place place;
   if (empty() || v >= corner_.size()) return place;

@@ -34,6 +34,9 @@ class Creases {
   Creases(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency, double angle_deg);
 
   bool empty() const { return edges_ == 0; }
+  //! Per triangle edge (3 * f + k), whether it is one of these creases' (crease_edges() but
+  //! the short loose curves dropped).
+  std::vector<char> edge_flags() const;
   Index n_curves() const { return Index(curves_.size()); }
   Index n_edges() const { return edges_; }
   Index n_corners() const { return corners_; }
