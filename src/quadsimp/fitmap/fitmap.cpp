@@ -424,10 +424,7 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
 }  // namespace
 
 std::vector<double> fitmap_radii(const TriMesh& t, int levels) {
-  double edges = 0;
-  for (const auto& f : t.faces)
-    for (int k = 0; k < 3; ++k) edges += (t.positions[f[k]] - t.positions[f[(k + 1) % 3]]).norm();
-  const double r0 = edges / (3.0 * std::max<Index>(t.n_faces(), 1));
+  const double r0 = mean_edge_length(t);
   const double rh = std::max(bbox_diagonal(t.positions) / 4.0, r0);
   std::vector<double> r(levels + 1);
   for (int i = 0; i <= levels; ++i) r[i] = r0 * std::pow(rh / r0, double(i) / levels);

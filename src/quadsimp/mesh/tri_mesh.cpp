@@ -198,6 +198,13 @@ std::pair<Vec3, Vec3> used_bbox(const TriMesh& m) {
   return {lo, hi};
 }
 
+double mean_edge_length(const TriMesh& t) {
+  double sum = 0;
+  for (const auto& f : t.faces)
+    for (int k = 0; k < 3; ++k) sum += (t.positions[f[k]] - t.positions[f[(k + 1) % 3]]).norm();
+  return t.n_faces() ? sum / (3.0 * t.n_faces()) : 0.0;
+}
+
 double bbox_diagonal(const std::vector<Vec3>& positions) {
   const auto [lo, hi] = bbox(positions);
   return (hi - lo).norm();

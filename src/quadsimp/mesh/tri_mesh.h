@@ -60,6 +60,10 @@ std::vector<Index> first_equal_positions(const std::vector<Vec3>& positions);
 //! \pre no unreferenced vertices (they are dropped).
 void sort_spatially(TriMesh& mesh);
 
+//! The mean length of the triangles' edges (each counted once per triangle), 0 without
+//! triangles: the fitmaps' first radius, ReferenceSurface's mean edge, Creases' measure.
+double mean_edge_length(const TriMesh& mesh);
+
 //! Length of the diagonal of the axis-aligned bounding box.
 double bbox_diagonal(const std::vector<Vec3>& positions);
 

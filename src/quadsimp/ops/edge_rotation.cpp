@@ -85,16 +85,25 @@ bool rotation_folds(const QuadMesh& m, Index h, Rotation r, Index except, bool b
   return false;
 }
 
+RotationUndo rotation_undo(const QuadMesh& m, Index h) {
+  const Index g = m.twin(h);
+  RotationUndo u;
+  u.faces[0] = QuadMesh::face(h), u.faces[1] = QuadMesh::face(g);
+  u.before = {m.face_vertices(u.faces[0]), m.face_vertices(u.faces[1])};
+  u.outer = {m.twin(QuadMesh::next(h)), m.twin(QuadMesh::opposite_in_face(h)), m.twin(QuadMesh::prev(h)),
+             m.twin(QuadMesh::next(g)), m.twin(QuadMesh::opposite_in_face(g)), m.twin(QuadMesh::prev(g))};
+  return u;
+}
+
+void undo_rotation(QuadMesh& m, const RotationUndo& u) {
+  detail::rewrite_faces(m, u.faces, u.before.data(), 2, u.outer.data(), 6);
+}
+
 void rotate_edge(QuadMesh& m, Index h, Rotation r, [[maybe_unused]] Index doublet) {
   assert(can_rotate_edge(m, h, r, doublet));
-  const Hexagon x = hexagon(m, h);
-  const Index g = m.twin(h);
-  const std::array<Index, 6> outer = {m.twin(QuadMesh::next(h)), m.twin(QuadMesh::opposite_in_face(h)),
-                                      m.twin(QuadMesh::prev(h)), m.twin(QuadMesh::next(g)),
-                                      m.twin(QuadMesh::opposite_in_face(g)), m.twin(QuadMesh::prev(g))};
+  const RotationUndo around = rotation_undo(m, h);  // its faces and outer twins
   const auto quads = rotated_faces(m, h, r);
-  const Index faces[2] = {x.f1, x.f2};
-  detail::rewrite_faces(m, faces, quads.data(), 2, outer.data(), 6);
+  detail::rewrite_faces(m, around.faces, quads.data(), 2, around.outer.data(), 6);
 }
 
 }  // namespace qs

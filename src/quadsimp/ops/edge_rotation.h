@@ -48,6 +48,18 @@ std::array<std::array<Index, 4>, 2> rotated_faces(const QuadMesh& mesh, Index h,
 //! ear removal rotates an edge to make an ear that it collapses right away.
 bool rotation_folds(const QuadMesh& mesh, Index h, Rotation r, Index except = kNone, bool bends = false);
 
+//! The two faces rotating edge h rewrites, as they are, and their outer twins: what
+//! undo_rotation() puts back (border and crease coarsening rotate, then undo if the
+//! collapse that was to follow is refused).
+struct RotationUndo {
+  Index faces[2];
+  std::array<std::array<Index, 4>, 2> before;
+  std::array<Index, 6> outer;
+};
+RotationUndo rotation_undo(const QuadMesh& mesh, Index h);
+//! Restores the faces as `undo` saved them. \pre no change since but rotations of them.
+void undo_rotation(QuadMesh& mesh, const RotationUndo& undo);
+
 //! Performs the rotation in place (faces keep their ids). \pre can_rotate_edge (with the
 //! same `doublet`).
 void rotate_edge(QuadMesh& mesh, Index h, Rotation r, Index doublet = kNone);

@@ -34,10 +34,7 @@ Creases::Creases(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& a
   // A short crease ending in nothing at both ends is a scan's noise, not a part's edge: kept,
   // its vertices stay at the input's spacing for good (bunny.ply at 60 degrees, adaptive:
   // the shortest edge 0.05 of the mean). Such curves go, and the rest are chained again.
-  double edge_sum = 0;
-  for (const auto& f : mesh.faces)
-    for (int k = 0; k < 3; ++k) edge_sum += (mesh.positions[f[k]] - mesh.positions[f[(k + 1) % 3]]).norm();
-  const double shortest = kShortestLoose * edge_sum / (3.0 * std::max<Index>(1, mesh.n_faces()));
+  const double shortest = kShortestLoose * mean_edge_length(mesh);
   bool dropped = false;
   for (const Curve& c : curves_) {
     if (c.closed || crease_degree_[c.vertices.front()] != 1 || crease_degree_[c.vertices.back()] != 1) continue;

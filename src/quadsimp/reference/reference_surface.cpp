@@ -119,16 +119,11 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
   const auto& P = mesh_.positions;
   diagonal_ = qs::bbox_diagonal(P);
   normals_.resize(mesh_.n_faces());
-  double edge_sum = 0;
-  for (Index f = 0; f < mesh_.n_faces(); ++f) {
-    const auto& t = mesh_.faces[f];
-    normals_[f] = mesh_.area_normal(t).normalized();
-    for (int k = 0; k < 3; ++k) edge_sum += (P[t[k]] - P[t[(k + 1) % 3]]).norm();
-  }
+  for (Index f = 0; f < mesh_.n_faces(); ++f) normals_[f] = mesh_.area_normal(mesh_.faces[f]).normalized();
+  mean_edge_ = qs::mean_edge_length(mesh_);
   area_ = surface_area(mesh_);
   vertex_normals_ = vertex_area_normals(mesh_);
   for (Vec3& n : vertex_normals_) n.normalize();
-  mean_edge_ = mesh_.n_faces() ? edge_sum / (3.0 * mesh_.n_faces()) : 0.0;
   adjacency_ = triangle_adjacency(mesh_);
   flap_ = folded_flaps(mesh_, adjacency_, normals_);
   border_out_.assign(mesh_.n_vertices(), kNone);

@@ -165,11 +165,7 @@ bool Simplifier::remove_border_vertex(Index b) {
   // Valence 3: rotate the interior edge b -> e away first, so that b keeps one face.
   const Index h = QuadMesh::next(ha);
   if (m_.twin(h) == kNone) return false;
-  const Index g = m_.twin(h), f1 = QuadMesh::face(h), f2 = QuadMesh::face(g);
-  const std::array<std::array<Index, 4>, 2> before = {m_.face_vertices(f1), m_.face_vertices(f2)};
-  const std::array<Index, 6> outer = {m_.twin(QuadMesh::next(h)), m_.twin(QuadMesh::opposite_in_face(h)),
-                                      m_.twin(QuadMesh::prev(h)),  m_.twin(QuadMesh::next(g)),
-                                      m_.twin(QuadMesh::opposite_in_face(g)), m_.twin(QuadMesh::prev(g))};
+  const RotationUndo undo = rotation_undo(m_, h);
   // The ear itself is not checked: it is collapsed next, and try_ear checks the faces
   // after that. Checking it refused every border vertex where the border is straight
   // or turns outwards (the ear's angle at b is then 180 degrees or more): on bunny.ply
@@ -180,12 +176,11 @@ bool Simplifier::remove_border_vertex(Index b) {
       continue;
     rotate_edge(m_, h, r);
     Index ear = kNone, k = 0;
-    for (Index f : {f1, f2})
+    for (Index f : undo.faces)
       for (Index i = 0; i < 4; ++i)
         if (m_.vertex(f, i) == b) ear = f, k = i;
     if (ear != kNone && try_ear(ear, k)) return true;
-    const Index faces[2] = {f1, f2};
-    detail::rewrite_faces(m_, faces, before.data(), 2, outer.data(), 6);  // undo the rotation
+    undo_rotation(m_, undo);
   }
   return false;
 }

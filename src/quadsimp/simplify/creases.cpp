@@ -179,31 +179,15 @@ bool Simplifier::remove_crease_vertex(Index b) {
   if (length >= (straight ? kStraightCreaseShort : kCreaseShort) * mu_at(b)) return false;
   // Each edge across the crease at b rotates away from it, until b has one face on
   // either side; every rotation is undone, the last first, unless the collapse follows.
-  struct Undo {
-    Index faces[2];
-    std::array<std::array<Index, 4>, 2> before;
-    std::array<Index, 6> outer;
-  };
-  std::array<Undo, 2> undo;
+  std::array<RotationUndo, 2> undo;
   int done = 0;
-  auto undo_all = [&] {
-    while (done > 0) {
-      const Undo& u = undo[--done];
-      detail::rewrite_faces(m_, u.faces, u.before.data(), 2, u.outer.data(), 6);
-    }
-  };
   while (m_.valence(b) > 2) {
     Index h = kNone;
     m_.for_each_outgoing(b, [&](Index e) {
       if (h == kNone && !pinned(m_.to(e))) h = e;
     });
     if (h == kNone || m_.twin(h) == kNone || done == 2) break;
-    const Index g = m_.twin(h);
-    Undo& u = undo[done];
-    u.faces[0] = QuadMesh::face(h), u.faces[1] = QuadMesh::face(g);
-    u.before = {m_.face_vertices(u.faces[0]), m_.face_vertices(u.faces[1])};
-    u.outer = {m_.twin(QuadMesh::next(h)), m_.twin(QuadMesh::opposite_in_face(h)), m_.twin(QuadMesh::prev(h)),
-               m_.twin(QuadMesh::next(g)), m_.twin(QuadMesh::opposite_in_face(g)), m_.twin(QuadMesh::prev(g))};
+    undo[done] = rotation_undo(m_, h);
     bool rotated = false;
     // The faces at b are not checked: they go with the collapse, which checks the rest.
     for (Rotation r : {Rotation::Ccw, Rotation::Cw}) {
@@ -218,7 +202,7 @@ bool Simplifier::remove_crease_vertex(Index b) {
     if (!rotated) break;
   }
   if (is_doublet(m_, b) && remove_crease_doublet(b)) return true;
-  undo_all();
+  while (done > 0) undo_rotation(m_, undo[--done]);
   return false;
 }
 
