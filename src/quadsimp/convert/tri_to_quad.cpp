@@ -371,7 +371,7 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
   // `full` keeps the neighbours across creases.
   std::vector<char> crease;
   std::vector<std::array<Index, 3>> full;
-  if (r.crease_splits > 0 || opt.crease_angle_deg > 0) {
+  if (opt.crease_angle_deg > 0) {
     crease = Creases(t, adj, opt.crease_angle_deg).edge_flags();
     if (std::find(crease.begin(), crease.end(), 1) == crease.end()) crease.clear();
     if (!crease.empty()) full = adj;

@@ -11,8 +11,9 @@ namespace {
 // mean input edges is dropped (Creases::Creases()).
 constexpr double kShortestLoose = 4.0;
 
-}  // namespace
-
+// Per triangle edge (3 * f + k, corner k to k + 1), whether its two triangles' normals part
+// by more than angle_deg degrees. Border edges are not creases; none for angle_deg 0 (no
+// creases asked for) or 180 and over.
 std::vector<char> crease_edges(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
                                double angle_deg) {
   std::vector<char> crease(3 * std::size_t(mesh.n_faces()), 0);
@@ -27,6 +28,8 @@ std::vector<char> crease_edges(const TriMesh& mesh, const std::vector<std::array
     }
   return crease;
 }
+
+}  // namespace
 
 Creases::Creases(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency, double angle_deg) {
   std::vector<char> crease = crease_edges(mesh, adjacency, angle_deg);

@@ -10,12 +10,6 @@
 
 namespace qs {
 
-//! Per triangle edge (3 * f + k, the edge from corner k to k + 1), whether it is a crease:
-//! its two triangles' normals part by more than `angle_deg` degrees. Border edges are not
-//! creases. All false when angle_deg is 0 (no creases asked for) or 180 and over.
-std::vector<char> crease_edges(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
-                               double angle_deg);
-
 //! The sharp edges of M0 chained into curves (ours; the paper keeps no feature, and
 //! smoothing rounds them off: a CAD cylinder's rims came out bevelled). A curve runs
 //! between two corners, or round a closed loop. Corners are the crease vertices where the
@@ -34,8 +28,8 @@ class Creases {
   Creases(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency, double angle_deg);
 
   bool empty() const { return edges_ == 0; }
-  //! Per triangle edge (3 * f + k), whether it is one of these creases' (crease_edges() but
-  //! the short loose curves dropped).
+  //! Per triangle edge (3 * f + k), whether it is one of these creases' (every edge sharper than
+  //! the angle but those of the short loose curves dropped).
   std::vector<char> edge_flags() const;
   Index n_curves() const { return Index(curves_.size()); }
   Index n_edges() const { return edges_; }
