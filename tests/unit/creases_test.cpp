@@ -452,9 +452,9 @@ TEST(Creases, coarse_shapes_at_low_angles_keep_every_invariant) {
 TEST(Creases, noisy_scans_keep_every_invariant) {
   // Spheres, tori and an open half sphere with noise, at 20 and 30 degrees: many short
   // creases, and the conversion's shared diagonals where their parts pair up on their own,
-  // which a collapse keeping a crease vertex's place under the other end's id once moved
-  // (the spheres and the torus of seed 6), and a doublet collapse keeping a corner's id
-  // (the half sphere, seed 0, and the torus of seed 2).
+  // which collapses beside them rename (new_shared_diagonal()): a crease vertex's place
+  // kept under the other end's id (the spheres and the torus of seed 6), a doublet
+  // collapse keeping a corner's place (the half sphere, seed 0, and the torus of seed 2).
   int runs = 0;
   for (unsigned seed : {0u, 1u, 2u, 5u, 6u}) {
     std::mt19937 rng(seed);

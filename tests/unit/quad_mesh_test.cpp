@@ -293,6 +293,37 @@ std::pair<int, bool> split_triangles(const QuadMesh& m) {
 
 }  // namespace
 
+TEST(QuadMesh, a_shared_diagonal_renamed_by_a_merge_is_not_a_new_one) {
+  // Quads A and B both have a and b as opposite corners; four more close the fans of a
+  // and b. Shared: a-b, x-u and w-y.
+  enum : Index { a, b, x, y, u, w, p, q, r, s, a2 };
+  std::vector<Vec3> P = {{0, 0, 1},   {0, 0, -1},    {1, 0, 0},  {0, 1, 0},     {-1, 0, 0},
+                         {0, -1, 0}, {0, 0.5, 1.5}, {0.5, 0, 1.5}, {0, 0.5, -1.5}, {0.5, 0, -1.5}};
+  std::vector<std::array<Index, 4>> Q = {{a, x, b, y}, {b, u, a, w}, {x, a, u, p},
+                                         {w, a, y, q}, {u, b, x, r}, {y, b, w, s}};
+  const QuadMesh m = QuadMesh::from_faces(P, Q);
+  const auto before = shared_diagonals(m);
+  ASSERT_EQ(before.size(), 3u);
+  const std::pair<Index, Index> none(kNone, kNone);
+  EXPECT_EQ(new_shared_diagonal(m, before, before), none);
+  EXPECT_EQ(new_shared_diagonal(m, {}, before), before[0]);
+  EXPECT_EQ(new_shared_diagonal(m, {before[0], before[2]}, before), before[1]);
+  // a merged into a vertex with a new id (a2), as a merge that keeps the other end's id
+  // leaves it: a is dead, and b-a2 is a-b renamed. With a still live it is a new one.
+  P.push_back(P[a]);
+  for (auto& quad : Q)
+    for (Index& v : quad) v = v == a ? Index(a2) : v;
+  const QuadMesh merged = QuadMesh::from_faces(P, Q);
+  ASSERT_FALSE(merged.is_vertex_live(a));
+  const auto now = shared_diagonals(merged);
+  ASSERT_EQ(now.size(), 3u);
+  EXPECT_EQ(new_shared_diagonal(merged, before, now), none);
+  EXPECT_EQ(new_shared_diagonal(m, before, now), std::make_pair(Index(b), Index(a2)));
+  // Each of the earlier diagonals explains one of the new ones at most.
+  const std::pair<Index, Index> other(b, a2 + 1);
+  EXPECT_EQ(new_shared_diagonal(merged, {before[0]}, {now[0], other}), other);
+}
+
 TEST(QuadMesh, split_diagonals_keep_the_triangles_manifold) {
   // Two quads on the same four corners: split alike, they were the same two triangles.
   std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};

@@ -2,6 +2,7 @@
 #include "quadsimp/mesh/quad_mesh.h"
 
 #include <algorithm>
+#include <iterator>
 #include <numeric>
 #include <set>
 #include <string>
@@ -279,15 +280,6 @@ bool share_a_face(const QuadMesh& m, Index p, Index q, Index skip_a, Index skip_
   return shared;
 }
 
-bool on_shared_diagonal(const QuadMesh& m, Index v, Index except) {
-  bool shared = false;
-  m.for_each_outgoing(v, [&](Index h) {
-    const Index o = m.to(QuadMesh::next(h));
-    shared = shared || (o != except && share_a_face(m, v, o, QuadMesh::face(h)));
-  });
-  return shared;
-}
-
 Index two_quad_piece_partner(const QuadMesh& m, Index f) {
   const Index t0 = m.twin(QuadMesh::halfedge(f, 0));
   if (t0 == kNone) return kNone;
@@ -308,6 +300,22 @@ std::vector<std::pair<Index, Index>> shared_diagonals(const QuadMesh& m) {
   std::sort(shared.begin(), shared.end());
   shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
   return shared;
+}
+
+std::pair<Index, Index> new_shared_diagonal(const QuadMesh& m, const std::vector<std::pair<Index, Index>>& before,
+                                            const std::vector<std::pair<Index, Index>>& now) {
+  std::vector<std::pair<Index, Index>> added, gone;
+  std::set_difference(now.begin(), now.end(), before.begin(), before.end(), std::back_inserter(added));
+  std::set_difference(before.begin(), before.end(), now.begin(), now.end(), std::back_inserter(gone));
+  auto same = [&](Index was, Index is) { return was == is || !m.is_vertex_live(was); };
+  for (const auto& [p, q] : added) {
+    const auto renamed = std::find_if(gone.begin(), gone.end(), [&, p = p, q = q](const auto& g) {
+      return (same(g.first, p) && same(g.second, q)) || (same(g.first, q) && same(g.second, p));
+    });
+    if (renamed == gone.end()) return {p, q};
+    gone.erase(renamed);
+  }
+  return {kNone, kNone};
 }
 
 std::vector<std::uint8_t> split_diagonals(const QuadMesh& m) {

@@ -153,10 +153,6 @@ void validate(const QuadMesh& mesh);
 //! Whether p and q are corners of one face other than the faces skip_a and skip_b.
 bool share_a_face(const QuadMesh& mesh, Index p, Index q, Index skip_a = kNone, Index skip_b = kNone);
 
-//! Whether v and the opposite corner of one of its faces (but `except`) share another face
-//! too: whether v is an end of a shared diagonal (shared_diagonals()).
-bool on_shared_diagonal(const QuadMesh& mesh, Index v, Index except = kNone);
-
 //! The other face of f's piece when that piece is f and one other face on the same four
 //! corners (sharing all four edges: what a tetrahedron converts to, the least a closed
 //! quad mesh has), else kNone.
@@ -169,6 +165,13 @@ Index two_quad_piece_partner(const QuadMesh& mesh, Index f);
 //! have some (the pairing of a low-poly mesh), but the operators never make one.
 //! Two-quad pieces (two_quad_piece_partner()) share theirs by nature and are left out.
 std::vector<std::pair<Index, Index>> shared_diagonals(const QuadMesh& mesh);
+
+//! The first of `now` (mesh's shared_diagonals()) that is not one of `before` (an earlier
+//! state's) renamed by merges: each end the same vertex, or a vertex merged away since
+//! (dead: ids are never reused). {kNone, kNone} if there is none. A merge that keeps the
+//! other end's id renames a diagonal without making one; ids alone would call it new.
+std::pair<Index, Index> new_shared_diagonal(const QuadMesh& mesh, const std::vector<std::pair<Index, Index>>& before,
+                                            const std::vector<std::pair<Index, Index>>& now);
 
 //! For each face (by id; dead faces get 0), the diagonal along which to split it into two
 //! triangles, k for corners k and k+2: where possible not one whose corners are joined

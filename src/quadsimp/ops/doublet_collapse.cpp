@@ -24,12 +24,11 @@ bool can_collapse_doublet(const QuadMesh& m, Index s) {
   return detail::link_condition(m, c.p, c.r, c.x, c.y, s);
 }
 
-Index collapse_doublet(QuadMesh& m, Index s, const Vec3& position, Index survivor) {
+Index collapse_doublet(QuadMesh& m, Index s, const Vec3& position) {
   assert(can_collapse_doublet(m, s));
-  const Index r = doublet_corners(m, s).r;
-  // remove_doublet() leaves the face (p, x, r, y), p at corner 0 and r at corner 2.
+  // remove_doublet() leaves the face (p, x, r, y), p at corner 0.
   const Index f = remove_doublet(m, s);
-  return collapse_diagonal(m, f, survivor == r ? 2 : 0, position);
+  return collapse_diagonal(m, f, 0, position);
 }
 
 }  // namespace qs

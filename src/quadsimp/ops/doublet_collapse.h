@@ -14,7 +14,7 @@ namespace qs {
 //!     | \ s |     ->       |
 //!     y --- r          y - v        V-2, E-4, F-2
 //!
-//! The survivor keeps p's id, or r's if asked. val(v) = val(p) + val(r) - 4.
+//! The survivor keeps p's id. val(v) = val(p) + val(r) - 4.
 //!
 //! Refused (false) when s is no doublet, or its faces make a pillow; p and r are both
 //! on the border; x or y is an interior vertex of valence <= 2; or the vertices sharing
@@ -30,7 +30,7 @@ struct DoubletCorners {
 DoubletCorners doublet_corners(const QuadMesh& mesh, Index s);
 
 //! Performs it and puts the survivor at `position`. \pre can_collapse_doublet.
-//! \return the surviving vertex: p, or r when `survivor` is r.
-Index collapse_doublet(QuadMesh& mesh, Index s, const Vec3& position, Index survivor = kNone);
+//! \return the surviving vertex, p.
+Index collapse_doublet(QuadMesh& mesh, Index s, const Vec3& position);
 
 }  // namespace qs

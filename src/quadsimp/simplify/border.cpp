@@ -146,9 +146,6 @@ bool Simplifier::remove_border_vertex(Index b) {
     // Unchecked, a corner that kept its place took in its border neighbours one after
     // another: the corner of a grid of 200 x 4 skinny cells ended with valence 14.
     if (ear_exceeds_valence(ear, k)) return false;
-    // With creases, a shared diagonal at the end that goes would move to the other (see
-    // cycle()).
-    if (!crease_.empty() && on_shared_diagonal(m_, m_.vertex(ear, k + 1), m_.vertex(ear, k + 3))) return false;
     const SurfacePoint foot = ref_.closest_within(keep, 0.0);  // a vertex's place
     if (!can_collapse_border_ear(m_, ear, k) || !foot.found() ||
         !for_each_face_after_collapse(m_, ear, (k + 1) & 3u, keep,

@@ -67,9 +67,7 @@ bool Simplifier::try_collapse_chord(const Chord& chord) {
   const Index pairs = chord.pairs();
   for (Index i = 0; i < pairs; ++i) {
     const Index l = chord.left[i], r = chord.right[i];
-    // With creases, a shared diagonal at the end that goes would move (see cycle()).
-    if ((opt_.preserve_boundary && (m_.is_border_vertex(l) || m_.is_border_vertex(r))) ||
-        (!crease_.empty() && on_shared_diagonal(m_, r, l))) {
+    if (opt_.preserve_boundary && (m_.is_border_vertex(l) || m_.is_border_vertex(r))) {
       ++rep_.refused_topology;
       return false;
     }

@@ -213,10 +213,6 @@ bool Simplifier::remove_crease_doublet(Index b) {
   for (Index x : {c.p, c.r})
     if (!(held_[x] & kHeldCorner) && crease_[x] != crease_[b]) return false;
   if ((held_[c.p] & held_[c.r] & kHeldCorner) != 0) return false;
-  // The end on a shared diagonal (the conversion's, at a crease midpoint) keeps its id, so
-  // that the diagonal stays the same pair; else a corner keeps its own. Both on one: refused.
-  const bool p_shared = on_shared_diagonal(m_, c.p, c.r), r_shared = on_shared_diagonal(m_, c.r, c.p);
-  if (p_shared && r_shared) return false;
   if (opt_.max_valence > 0 && m_.valence(c.p) + m_.valence(c.r) - 4 > opt_.max_valence) {
     ++rep_.refused_valence;
     return false;
@@ -244,7 +240,7 @@ bool Simplifier::remove_crease_doublet(Index b) {
     return false;
   }
   const char held = held_[c.p] | held_[c.r];
-  const Index v = collapse_doublet(m_, b, pos, r_shared || (keep == c.r && !p_shared) ? c.r : c.p);
+  const Index v = collapse_doublet(m_, b, pos);
   held_[v] = held;
   inherit(v, keep);
   record_foot(v, foot);

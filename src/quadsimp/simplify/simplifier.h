@@ -117,7 +117,8 @@ class Simplifier {
   void after_change(std::initializer_list<Index> touched) { after_change(touched.begin(), touched.end()); }
   void after_change(const Index* first, const Index* last);
   // SimplifyOptions::check_invariants; border vertices on M0's border too unless told not.
-  void check_invariants(bool border_on_m0 = true) const;
+  void check_invariants(bool border_on_m0 = true);
+  void check_shared_diagonals();
   void check_border_on_m0() const;
   void add_faces_around(Index v, std::vector<Index>& faces);
   void requeue_region();
@@ -311,10 +312,10 @@ class Simplifier {
   // bunny.ply split to 1.1M triangles.
   std::vector<Index> border_candidates_;
   std::vector<char> border_noted_;
-  // check_invariants: the input's own shared diagonals (shared_diagonals()). The pairing
-  // of low-poly meshes makes some (pyvista's ant keeps 10 past the cleaning); the
-  // operators must add none, and none of the input's may move to another vertex.
-  std::vector<std::pair<Index, Index>> shared_at_start_;
+  // check_invariants: the shared diagonals (shared_diagonals()) at the last check. The
+  // input may have some (the pairing of low-poly meshes; the crease conversion's flat
+  // quads); the operators must add none (check_shared_diagonals()).
+  std::vector<std::pair<Index, Index>> shared_;
   void note_border(Index v) {
     if (!border_noted_[v] && m_.is_vertex_live(v) && m_.is_border_vertex(v))
       border_noted_[v] = 1, border_candidates_.push_back(v);

@@ -219,7 +219,6 @@ Simplifier::Verdict Simplifier::check_collapse(Index f, Index k, Vec3& pos, Surf
   if (!crease_.empty()) {
     const Index a = m_.vertex(f, k), c = m_.vertex(f, k + 2);
     if (joins_pinned(a, c) || joins_pinned(c, a)) return Verdict::Topology;
-    if (on_shared_diagonal(m_, a, c) && on_shared_diagonal(m_, c, a)) return Verdict::Topology;
   }
   if (exceeds_valence(f, k)) return Verdict::Valence;
   if (!place(f, k, pos, foot)) return Verdict::Geometry;
@@ -432,13 +431,9 @@ void Simplifier::cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& fo
   const Index a = m_.vertex(f, k);
   const char held = held_[a] | held_[c];
   const bool c_kept = pinned(c);  // place() kept c's place (merge_keeps_tip())
-  // With creases, the end on a shared diagonal keeps its id, so that the diagonal stays
-  // the same pair (check_collapse() refuses where both are on one): the conversion leaves
-  // many where the parts between creases pair up on their own.
-  const bool c_id = !crease_.empty() && on_shared_diagonal(m_, c, a);
-  const Index v = collapse_diagonal(m_, f, c_id ? k + 2 : k, pos);
+  const Index v = collapse_diagonal(m_, f, k, pos);
   held_[v] = held;
-  if (c_kept != c_id) inherit(v, c_kept ? c : a);
+  if (c_kept) inherit(v, c);
   record_foot(v, foot);
   ++rep_.collapses;
   after_change({v, b, d});
@@ -481,13 +476,9 @@ void Simplifier::after_change(const Index* first, const Index* last) {
 // Border coarsening visits only its candidates (border_candidates_): a vertex an
 // operation brings to the border must be noted by after_change(), or it is never
 // coarsened, and nothing else would show it. The same for the pieces' face counts.
-void Simplifier::check_invariants(bool border_on_m0) const {
+void Simplifier::check_invariants(bool border_on_m0) {
   validate(m_);
-  const auto shared = shared_diagonals(m_);
-  if (!std::includes(shared_at_start_.begin(), shared_at_start_.end(), shared.begin(), shared.end()))
-    throw std::logic_error("simplify: a diagonal's corners share another quad where they did not at the start (" +
-                           std::to_string(shared.size()) + " such diagonals, " +
-                           std::to_string(shared_at_start_.size()) + " at the start)");
+  check_shared_diagonals();
   for (Index v = 0; v < m_.vertex_capacity(); ++v)
     if (m_.is_vertex_live(v) && m_.is_border_vertex(v) && !border_noted_[v])
       throw std::logic_error("simplify: border vertex " + std::to_string(v) + " is not a border-coarsening candidate");
@@ -498,6 +489,18 @@ void Simplifier::check_invariants(bool border_on_m0) const {
   for (Index f = 0; f < m_.face_capacity(); ++f)
     if (m_.is_face_live(f)) ++faces[component_[m_.vertex(f, 0)]];
   if (faces != piece_faces_) throw std::logic_error("simplify: the pieces' face counts are off");
+}
+
+// The operators make no shared diagonal; a merge may rename one (new_shared_diagonal()).
+void Simplifier::check_shared_diagonals() {
+  auto shared = shared_diagonals(m_);
+  const auto [p, q] = new_shared_diagonal(m_, shared_, shared);
+  if (p != kNone)
+    throw std::logic_error("simplify: the corners " + std::to_string(p) + " and " + std::to_string(q) +
+                           " of a diagonal share another quad, and no such diagonal was there before (" +
+                           std::to_string(shared.size()) + " such diagonals now, " + std::to_string(shared_.size()) +
+                           " at the last check)");
+  shared_ = std::move(shared);
 }
 
 // Border vertices lie on M0's border: one left off it no longer slides along the border
@@ -567,7 +570,7 @@ SimplifyReport Simplifier::run() {
       if (s.found()) record_foot(v, s);
     }
   hold_tips();
-  if (opt_.check_invariants) shared_at_start_ = shared_diagonals(m_);
+  if (opt_.check_invariants) shared_ = shared_diagonals(m_);
   border_noted_.assign(m_.vertex_capacity(), 0);
   for (Index v = 0; v < m_.vertex_capacity(); ++v) note_border(v);
   has_border_ = !border_candidates_.empty();
@@ -575,7 +578,7 @@ SimplifyReport Simplifier::run() {
   component_mu_.assign(connected_components(m_, component_), 0.0);
   update_mu();
   // The conversion's flat quads at crease midpoints (ConvertReport::crease_midpoints) go
-  // first: their shared diagonal is the input's, and a collapse beside one would move it.
+  // first: their straight angles are the worst quads the conversion leaves.
   if (!crease_.empty()) coarsen_creases();
   if (opt_.initial_sweeps > 0) {
     region_faces_.clear();
