@@ -49,19 +49,19 @@ CLI::Validator face_count_or_auto() {
       "");
 }
 
-// --faces: "N", or "P%" of the quads the input converts to.
-CLI::Validator face_count_or_share() {
-  return CLI::Validator(
-      [](std::string& s) -> std::string {
-        double share = 0;
-        if (!s.empty() && s.back() == '%') {
-          if (qs::parse_number(std::string_view(s).substr(0, s.size() - 1), share) && share > 0 && share <= 100)
-            return {};
-          return "'" + s + "' is not a share above 0% and at most 100%";
-        }
-        return not_a_whole_number_from_one(s);
-      },
-      "");
+// --faces: "N", or "P%" of the quads the input converts to. Returns "" or why `s` is
+// neither; sets the target in `p` when given one (the validator checks, the callback sets).
+std::string parse_face_target(const std::string& s, qs::SimplifyParams* p) {
+  if (!s.empty() && s.back() == '%') {
+    double percent = 0;
+    if (!qs::parse_number(std::string_view(s).substr(0, s.size() - 1), percent) || !(percent > 0 && percent <= 100))
+      return "'" + s + "' is not a share above 0% and at most 100%";
+    if (p) p->target_share = percent / 100;
+    return {};
+  }
+  if (std::string why = not_a_whole_number_from_one(s); !why.empty()) return why;
+  if (p) qs::parse_number(s, p->target_faces);
+  return {};
 }
 
 CLI::Validator number_above_zero() {
@@ -95,18 +95,10 @@ int main(int argc, char** argv) {
   s->add_option("IN", simp.input, "input mesh (PLY, OBJ, OFF, STL; triangles or quads)")->required()->check(CLI::ExistingFile);
   s->add_option("OUT", simp.output, "output quad mesh (.ply, .obj or .off)")->required();
   s->add_option_function<std::string>(
-       "-f,--faces",
-       [&simp](const std::string& v) {
-         // Checked by the validator: a whole number, or a share of (0, 100] with '%'.
-         double percent = 0;
-         if (v.back() == '%' && qs::parse_number(std::string_view(v).substr(0, v.size() - 1), percent))
-           simp.params.target_share = percent / 100;
-         else
-           qs::parse_number(v, simp.params.target_faces);
-       },
+       "-f,--faces", [&simp](const std::string& v) { parse_face_target(v, &simp.params); },
        "target number of quads, or a share of the input's quads (10%)")
       ->type_name("N|P%")
-      ->check(face_count_or_share());
+      ->check(CLI::Validator([](std::string& v) { return parse_face_target(v, nullptr); }, ""));
   s->add_flag("--adaptive", simp.params.adaptive, "adaptive mode driven by fitmaps");
   s->add_flag("--auto-halt", simp.params.auto_halt,
               "adaptive: stop once the faces whose collapses the M-fitmap (or --reach) refuses cover --halt-share of the "
