@@ -15,9 +15,10 @@ namespace qs {
 //! between two corners, or round a closed loop. Corners are the crease vertices where the
 //! curves end or meet (one crease edge, three or more, or a crease reaching M0's border)
 //! and those where a curve turns by more than 45 degrees (a box's edge loop round a
-//! rounded corner has none; a bracket's L has one). A curve shorter than four mean input
-//! edges whose ends meet no other crease (a scan's noise) is dropped. The simplifier keeps
-//! corners where they are and slides the other crease vertices along their curves.
+//! rounded corner has none; a bracket's L has one). A network of curves (those meeting at
+//! corners) shorter than four mean input edges in all (a scan's noise) is dropped. The
+//! simplifier keeps corners where they are and slides the other crease vertices along
+//! their curves.
 //!
 //! Points on a curve are given by a parameter s: segment i spans [i, i + 1] (vertex i at
 //! s = i); a closed curve's last segment ends back at vertex 0 (s = its segment count).
@@ -29,7 +30,7 @@ class Creases {
 
   bool empty() const { return edges_ == 0; }
   //! Per triangle edge (3 * f + k), whether it is one of these creases' (every edge sharper than
-  //! the angle but those of the short loose curves dropped).
+  //! the angle but those of the short networks dropped).
   std::vector<char> edge_flags() const;
   Index n_curves() const { return Index(curves_.size()); }
   Index n_edges() const { return edges_; }
@@ -85,7 +86,7 @@ class Creases {
   std::vector<Index> edge_curve_, edge_segment_;
   // Per M0 vertex: a corner, or the curve it lies inside and its index along it (kNone).
   std::vector<char> corner_;
-  std::vector<Index> vertex_curve_, vertex_index_, crease_degree_;
+  std::vector<Index> vertex_curve_, vertex_index_;
   Index edges_ = 0, corners_ = 0;
 };
 
