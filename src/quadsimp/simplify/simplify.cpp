@@ -5,7 +5,6 @@
 #include "quadsimp/simplify/simplify.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,6 +19,7 @@
 #include "quadsimp/ops/diagonal_collapse.h"
 #include "quadsimp/simplify/simplifier.h"
 #include "quadsimp/util/errors.h"
+#include "quadsimp/util/parallel.h"
 
 namespace qs {
 namespace {
@@ -352,11 +352,12 @@ void Simplifier::update_mu() {
 // past it nor along the stretch (bound_radius()): the loop's faces may pass the bound, and
 // where they do the surface counts as blocked.
 // check_collapse() only reads, so the faces are judged in parallel (a seventh of the
-// adaptive bunny's loop, judged one by one); the areas are summed in face order, so the
-// share, and where the run halts, do not depend on the threads.
+// adaptive bunny's loop, judged one by one), with this thread's floating-point settings
+// (parallel_for_as_here()); the areas are summed in face order, so the share, and where
+// the run halts, do not depend on the threads.
 double Simplifier::blocked_share() {
   blocked_area_.assign(m_.face_capacity(), 0.0);
-  tbb::parallel_for(tbb::blocked_range<Index>(0, m_.face_capacity(), 512), [&](const tbb::blocked_range<Index>& r) {
+  parallel_for_as_here(tbb::blocked_range<Index>(0, m_.face_capacity(), 512), [&](const tbb::blocked_range<Index>& r) {
     for (Index f = r.begin(); f != r.end(); ++f) {
       if (!m_.is_face_live(f)) continue;
       bool refused = false, allowed = false;
