@@ -147,6 +147,24 @@ TEST(Creases, a_cube_has_twelve_curves_between_eight_corners) {
   }
 }
 
+TEST(Creases, a_noisy_cube_still_has_twelve_curves_between_eight_corners) {
+  // A scanned machined part: the cube's vertices moved by noise of 5% and 7% of an edge.
+  // One triangle's normal against its neighbour's then gives sharp edges off the cube's
+  // edges and gaps along them, and the creases zigzag: the normals are filtered first, and
+  // a turn must hold a few edges on, so the creases are the cube's twelve edges again.
+  // Without the filtering 16 and 31 curves; without the turn's reach 12 and 33.
+  for (const auto& [share, angle] : {std::pair(0.05, 45.0), std::pair(0.07, 60.0)}) {
+    TriMesh t = tri_cube(24);
+    std::mt19937 rng(1);
+    std::normal_distribution<double> noise(0, share * 2.0 / 24);
+    for (Vec3& p : t.positions) p += Vec3(noise(rng), noise(rng), noise(rng));
+    const Creases c = creases_of(t, angle);
+    EXPECT_EQ(c.n_curves(), 12u) << share;
+    EXPECT_EQ(c.n_corners(), 8u) << share;
+    EXPECT_EQ(c.n_edges(), 12u * 24) << share;
+  }
+}
+
 TEST(Creases, none_below_the_angle_or_without_one) {
   EXPECT_TRUE(creases_of(tri_cube(4), 0).empty());
   EXPECT_TRUE(creases_of(tri_cube(4), 95).empty());  // a cube's edges turn by 90 degrees
