@@ -11,14 +11,16 @@
 namespace qs {
 
 //! The sharp edges of M0 chained into curves (ours; the paper keeps no feature, and
-//! smoothing rounds them off: a CAD cylinder's rims came out bevelled). A curve runs
-//! between two corners, or round a closed loop. Corners are the crease vertices where the
-//! curves end or meet (one crease edge, three or more, or a crease reaching M0's border)
-//! and those where a curve turns by more than 45 degrees (a box's edge loop round a
-//! rounded corner has none; a bracket's L has one). A network of curves (those meeting at
-//! corners) shorter than four mean input edges in all (a scan's noise) is dropped. The
-//! simplifier keeps corners where they are and slides the other crease vertices along
-//! their curves.
+//! smoothing rounds them off: a CAD cylinder's rims came out bevelled). An edge is sharp
+//! where its triangles' normals, filtered first so that a scan's noise neither makes nor
+//! breaks creases, part by more than the angle. A curve runs between two corners, or round
+//! a closed loop. Corners are the crease vertices where the curves end or meet (one crease
+//! edge, three or more, or a crease reaching M0's border) and those where a curve turns by
+//! more than 45 degrees, there and still two mean input edges on (a box's edge loop round a
+//! rounded corner has none; a bracket's L has one; a noisy crease's zigzags have none). A
+//! network of curves (those meeting at corners) shorter than four mean input edges in all
+//! (a scan's noise) is dropped. The simplifier keeps corners where they are and slides the
+//! other crease vertices along their curves.
 //!
 //! Points on a curve are given by a parameter s: segment i spans [i, i + 1] (vertex i at
 //! s = i); a closed curve's last segment ends back at vertex 0 (s = its segment count).
