@@ -2,13 +2,13 @@
 #include "quadsimp/fitmap/anisotropy.h"
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
 #include "quadsimp/fitmap/cells.h"
+#include "quadsimp/util/parallel.h"
 
 namespace qs {
 namespace {
@@ -63,7 +63,7 @@ Anisotropy compute_anisotropy(const TriMesh& t, const std::vector<std::array<Ind
 
   const double r2 = radius * radius;
   tbb::enumerable_thread_specific<Scratch> scratch;
-  tbb::parallel_for(Index(0), nv, [&](Index v) {
+  parallel_for_as_here(Index(0), nv, [&](Index v) {
     if (start[v] == kNone) return;
     Scratch& s = scratch.local();
     if (s.mark.size() != nc) s.mark.assign(nc, 0), s.stamp = 0;

@@ -2,7 +2,6 @@
 #include "quadsimp/fitmap/fitmap.h"
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -12,6 +11,7 @@
 
 #include "quadsimp/fitmap/cells.h"
 #include "quadsimp/util/errors.h"
+#include "quadsimp/util/parallel.h"
 
 namespace qs {
 namespace {
@@ -372,7 +372,7 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
   for (Index i = 0; i < nl; ++i) {
     const double r = radii[i];
     if (r <= opt.exact_up_to * radii[0]) {
-      tbb::parallel_for(Index(0), nv, [&](Index v) {
+      parallel_for_as_here(Index(0), nv, [&](Index v) {
         if (!needed(v, i)) return;
         const std::size_t k = std::size_t(v) * nl + i;
         ok[k] = exact_ball(t, inc, tm, v, r, scratch.local(), error[k], frac[k]);
@@ -391,7 +391,7 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
       std::vector<Index> fill(first.begin(), first.end() - 1);
       for (Index v = 0; v < nv; ++v)
         if (needed(v, i)) members[fill[start_of(v)]++] = v;
-      tbb::parallel_for(Index(0), nc, [&](Index c) {
+      parallel_for_as_here(Index(0), nc, [&](Index c) {
         const Index *group = members.data() + first[c], *end = members.data() + first[c + 1];
         cell_balls(L, c, group, end - group, t, centre, r, opt.share_cell_searches, scratch.local(),
                    [&](std::size_t m, bool good, double e, double f) {
@@ -445,7 +445,7 @@ Fitmaps fitmaps_brute_force(const TriMesh& t, const std::vector<Index>& vertices
   out.s.assign(vertices.size(), 0.f);
   out.m.assign(vertices.size(), 0.f);
   tbb::enumerable_thread_specific<Scratch> scratch;
-  tbb::parallel_for(std::size_t(0), vertices.size(), [&](std::size_t j) {
+  parallel_for_as_here(std::size_t(0), vertices.size(), [&](std::size_t j) {
     std::vector<double> e(radii.size()), fr(radii.size());
     std::vector<char> ok(radii.size());
     for (std::size_t i = 0; i < radii.size(); ++i)

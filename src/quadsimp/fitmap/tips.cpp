@@ -2,10 +2,11 @@
 #include "quadsimp/fitmap/tips.h"
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+
+#include "quadsimp/util/parallel.h"
 
 namespace qs {
 namespace {
@@ -27,7 +28,7 @@ std::vector<Index> find_tips(const TriMesh& t, const TipOptions& o) {
   const double r = o.radius, near = 0.7 * r, rise = 0.1 * r;
   std::vector<double> slope(nv, -1);  // the least fall at the rim; -1: not a tip
   tbb::enumerable_thread_specific<Scratch> scratch;
-  tbb::parallel_for(Index(0), nv, [&](Index v) {
+  parallel_for_as_here(Index(0), nv, [&](Index v) {
     if (rings.border[v] || !(normal[v].squaredNorm() > 0)) return;
     Scratch& s = scratch.local();
     if (s.mark.size() != nv) s.mark.assign(nv, 0), s.stamp = 0;

@@ -1,8 +1,6 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include "quadsimp/metrics/metrics.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -12,6 +10,7 @@
 #include "quadsimp/mesh/mesh_file.h"
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/simplify/simplify.h"
+#include "quadsimp/util/parallel.h"
 
 namespace qs {
 namespace {
@@ -35,7 +34,7 @@ std::vector<Vec3> sample_surface(const TriMesh& t, Index n, std::uint64_t stream
     cdf[f] = total;
   }
   std::vector<Vec3> s(n + t.n_vertices());
-  tbb::parallel_for(Index(0), n, [&](Index i) {
+  parallel_for_as_here(Index(0), n, [&](Index i) {
     const double pick = uniform01(i, 3 * stream) * total;
     const Index f = Index(std::min<std::size_t>(std::lower_bound(cdf.begin(), cdf.end(), pick) - cdf.begin(),
                                                 cdf.size() - 1));
@@ -54,7 +53,8 @@ struct OneSided {
 
 OneSided distances(const std::vector<Vec3>& points, const ReferenceSurface& target) {
   std::vector<double> d(points.size());
-  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) { d[i] = target.closest(points[i]).distance; });
+  parallel_for_as_here(std::size_t(0), points.size(),
+                       [&](std::size_t i) { d[i] = target.closest(points[i]).distance; });
   OneSided r;
   for (double x : d) {  // serial: the same sum whatever the thread count
     r.max = std::max(r.max, x);
@@ -161,7 +161,7 @@ SurfaceDistance surface_distance(const QuadMesh& m, const ReferenceSurface& ref,
   // nearest hit on the reference must face the same way.
   std::vector<char> ok(samples, 0);
   const double reach = kProjectabilityReach * diag;
-  tbb::parallel_for(Index(0), samples, [&](Index i) {
+  parallel_for_as_here(Index(0), samples, [&](Index i) {
     const SurfacePoint s = out_surface.closest(on_out[i]);
     if (!s.found()) return;
     const Vec3 n = out_surface.normal_at(s);

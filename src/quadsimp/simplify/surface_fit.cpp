@@ -1,13 +1,12 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include "quadsimp/simplify/surface_fit.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/metrics/metrics.h"
+#include "quadsimp/util/parallel.h"
 
 namespace qs {
 namespace {
@@ -92,7 +91,7 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
     const SurfacePoint foot = ref.closest(0.25 * (p[0] + p[1] + p[2] + p[3]));
     return !foot.found() || ref.normal_at(foot).dot(nf) > 0;
   };
-  tbb::parallel_for(std::size_t(0), faces.size(), [&](std::size_t i) {
+  parallel_for_as_here(std::size_t(0), faces.size(), [&](std::size_t i) {
     const Index f = faces[i];
     const auto c = m.face_vertices(f);
     FaceStart& s = face_start[f];
@@ -124,7 +123,7 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
     // Reference -> quads: every input vertex pulls the three corners of its closest
     // output triangle by their barycentric weights.
     hits.resize(in.n_vertices());
-    tbb::parallel_for(Index(0), in.n_vertices(), [&](Index i) { hits[i] = out_surface.closest(in.positions[i]); });
+    parallel_for_as_here(Index(0), in.n_vertices(), [&](Index i) { hits[i] = out_surface.closest(in.positions[i]); });
     for (Index i = 0; i < in.n_vertices(); ++i) {  // serial: the same sums whatever the threads
       const SurfacePoint& s = hits[i];
       if (!s.found()) continue;
@@ -136,7 +135,8 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
     // Quads -> reference, from regular samples of the output triangles.
     samples.build(out, area_per_sample);
     feet.resize(samples.points.size());
-    tbb::parallel_for(std::size_t(0), feet.size(), [&](std::size_t i) { feet[i] = ref.closest(samples.points[i]).point; });
+    parallel_for_as_here(std::size_t(0), feet.size(),
+                         [&](std::size_t i) { feet[i] = ref.closest(samples.points[i]).point; });
     for (std::size_t i = 0; i < feet.size(); ++i) {
       const auto& t = out.faces[samples.triangle[i]];
       for (int k = 0; k < 3; ++k)
@@ -163,7 +163,8 @@ SurfaceFitReport fit_to_surface(QuadMesh& m, const ReferenceSurface& ref, const 
     while (!check.empty()) {
       for (Index i = 0; i < n; ++i) m.position(live[i]) = from[i] + scale[i] * step[i];
       bad.assign(check.size(), 0);
-      tbb::parallel_for(std::size_t(0), check.size(), [&](std::size_t j) { bad[j] = !face_ok(check[j], face_start[check[j]]); });
+      parallel_for_as_here(std::size_t(0), check.size(),
+                           [&](std::size_t j) { bad[j] = !face_ok(check[j], face_start[check[j]]); });
       again.clear();
       for (std::size_t j = 0; j < check.size(); ++j) {
         if (!bad[j]) continue;

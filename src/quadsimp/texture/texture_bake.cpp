@@ -1,13 +1,12 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include "quadsimp/texture/texture_bake.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "quadsimp/reference/reference_surface.h"
+#include "quadsimp/util/parallel.h"
 
 namespace qs {
 namespace {
@@ -141,7 +140,7 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
   im.rgba.assign(std::size_t(im.width) * std::size_t(im.height) * 4, 0);
   for (std::size_t i = 3; i < im.rgba.size(); i += 4) im.rgba[i] = 255;
   out.corners.assign(quads.face_capacity(), {});
-  tbb::parallel_for(std::size_t(0), faces.size(), [&](std::size_t i) {
+  parallel_for_as_here(std::size_t(0), faces.size(), [&](std::size_t i) {
     const Index f = faces[i];
     const auto p = quads.positions_of(quads.face_vertices(f));
     const int x0 = tiles[i].x, y0 = tiles[i].y, tile = tiles[i].size, inner = tile - 2;
