@@ -114,7 +114,7 @@ Index fix_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj) {
 // to the root, which is the part holding the border edge fix_parity() will split (any
 // part, where the component is closed and so even). Returns the crease edges split.
 Index fix_crease_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj, double crease_angle_deg) {
-  const std::vector<char> crease = Creases(t, adj, crease_angle_deg).edge_flags();
+  const std::vector<char> crease = crease_edges(t, adj, crease_angle_deg);
   if (std::find(crease.begin(), crease.end(), 1) == crease.end()) return 0;
   auto edge_to = [&](Index f, Index g) {
     Index k = 0;
@@ -372,7 +372,7 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
   std::vector<char> crease;
   std::vector<std::array<Index, 3>> full;
   if (opt.crease_angle_deg > 0) {
-    crease = Creases(t, adj, opt.crease_angle_deg).edge_flags();
+    crease = crease_edges(t, adj, opt.crease_angle_deg);
     if (std::find(crease.begin(), crease.end(), 1) == crease.end()) crease.clear();
     if (!crease.empty()) full = adj;
     for (Index f = 0; f < t.n_faces() && !crease.empty(); ++f)

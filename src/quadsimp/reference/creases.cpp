@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <utility>
 
 #include "quadsimp/util/parallel.h"
 
@@ -46,9 +48,36 @@ std::vector<Vec3> filtered_normals(const TriMesh& mesh, const std::vector<std::a
   return normal;
 }
 
-// Per triangle edge (3 * f + k, corner k to k + 1), whether its two triangles' filtered
-// normals (filtered_normals()) part by more than angle_deg degrees. Border edges are not creases; none for angle_deg 0 (no
-// creases asked for) or 180 and over.
+// Clears the crease edges of every network (edges meeting at vertices: curves meeting at
+// corners) shorter than kShortestNetwork mean input edges in all. Such a network is a
+// scan's noise, not a part's edge: kept, its vertices stay at the input's spacing for
+// good. Loose short curves left the shortest edge of bunny.ply at 60 degrees, adaptive, at
+// 0.05 of the mean; at 60 degrees every network of the armadillo is a cluster of one or
+// two input edges' curves meeting at corners (71 curves, 31 networks).
+void drop_short_networks(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
+                         std::vector<char>& crease) {
+  std::vector<Index> network(mesh.n_vertices());
+  std::iota(network.begin(), network.end(), Index(0));
+  auto root = [&](Index v) {
+    while (network[v] != v) v = network[v] = network[network[v]];
+    return v;
+  };
+  auto ends = [&](Index e) { return std::pair(mesh.faces[e / 3][e % 3], mesh.faces[e / 3][(e % 3 + 1) % 3]); };
+  // Each edge once: as the half of its lower-numbered triangle.
+  auto once = [&](Index e) { return crease[e] && adjacency[e / 3][e % 3] > e / 3; };
+  const Index halves = Index(crease.size());
+  for (Index e = 0; e < halves; ++e)
+    if (once(e)) network[root(ends(e).first)] = root(ends(e).second);
+  std::vector<double> length(mesh.n_vertices(), 0.0);
+  for (Index e = 0; e < halves; ++e)
+    if (once(e)) length[root(ends(e).first)] += (mesh.positions[ends(e).first] - mesh.positions[ends(e).second]).norm();
+  const double shortest = kShortestNetwork * mean_edge_length(mesh);
+  for (Index e = 0; e < halves; ++e)
+    if (crease[e] && length[root(ends(e).first)] < shortest) crease[e] = 0;
+}
+
+}  // namespace
+
 std::vector<char> crease_edges(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
                                double angle_deg) {
   std::vector<char> crease(3 * std::size_t(mesh.n_faces()), 0);
@@ -61,60 +90,16 @@ std::vector<char> crease_edges(const TriMesh& mesh, const std::vector<std::array
       // A triangle of no area has no normal (NaN): its edges are not creases.
       crease[3 * f + k] = g != kNone && normal[f].dot(normal[g]) < cos_max;
     }
+  drop_short_networks(mesh, adjacency, crease);
   return crease;
 }
 
-}  // namespace
-
 Creases::Creases(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency, double angle_deg) {
-  std::vector<char> crease = crease_edges(mesh, adjacency, angle_deg);
-  chain(mesh, adjacency, crease);
-  // A network of creases a few input edges long in all is a scan's noise, not a part's
-  // edge: kept, its vertices stay at the input's spacing for good. Loose short curves
-  // left the shortest edge of bunny.ply at 60 degrees, adaptive, at 0.05 of the mean; at
-  // 60 degrees every network of the armadillo is a cluster of one or two input edges'
-  // curves meeting at corners (71 curves, 31 networks). Such networks go, and the rest
-  // are chained again.
-  std::vector<Index> network(curves_.size());
-  for (Index c = 0; c < Index(curves_.size()); ++c) network[c] = c;
-  auto root = [&](Index c) {
-    while (network[c] != c) c = network[c] = network[network[c]];
-    return c;
-  };
-  std::vector<Index> at_corner(mesh.n_vertices(), kNone);  // a curve ending there
-  for (Index c = 0; c < Index(curves_.size()); ++c)
-    if (!curves_[c].closed)
-      for (Index v : {curves_[c].vertices.front(), curves_[c].vertices.back()}) {
-        if (at_corner[v] == kNone) at_corner[v] = c;
-        network[root(c)] = root(at_corner[v]);
-      }
-  std::vector<double> length(curves_.size(), 0.0);
-  for (Index c = 0; c < Index(curves_.size()); ++c) {
-    const std::vector<Index>& v = curves_[c].vertices;
-    double l = curves_[c].closed ? (mesh.positions[v.front()] - mesh.positions[v.back()]).norm() : 0.0;
-    for (std::size_t i = 0; i + 1 < v.size(); ++i) l += (mesh.positions[v[i + 1]] - mesh.positions[v[i]]).norm();
-    length[root(c)] += l;
-  }
-  const double shortest = kShortestNetwork * mean_edge_length(mesh);
-  bool dropped = false;
-  for (Index c = 0; c < Index(curves_.size()); ++c) {
-    if (length[root(c)] >= shortest) continue;
-    const Curve& curve = curves_[c];
-    for (std::size_t i = 0; i < curve.faces.size(); ++i) {
-      const Index f = curve.faces[i], k = curve.edge[i], g = adjacency[f][k];
-      crease[3 * f + k] = 0;
-      for (Index l = 0; l < 3; ++l)
-        if (adjacency[g][l] == f) crease[3 * g + l] = 0;
-    }
-    dropped = true;
-  }
-  if (dropped) chain(mesh, adjacency, crease);
+  chain(mesh, adjacency, crease_edges(mesh, adjacency, angle_deg));
 }
 
 void Creases::chain(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
                     const std::vector<char>& crease) {
-  curves_.clear();
-  edges_ = corners_ = 0;
   const Index nv = mesh.n_vertices(), nf = mesh.n_faces();
   auto from = [&](Index e) { return mesh.faces[e / 3][e % 3]; };
   auto to = [&](Index e) { return mesh.faces[e / 3][(e % 3 + 1) % 3]; };
@@ -211,12 +196,6 @@ void Creases::chain(const TriMesh& mesh, const std::vector<std::array<Index, 3>>
   for (Index v = 0; v < nv; ++v)
     for (Index i = start[v]; i < start[v + 1]; ++i)
       if (!used[edges[i]]) walk(v, edges[i]);
-}
-
-std::vector<char> Creases::edge_flags() const {
-  std::vector<char> flags(edge_curve_.size(), 0);
-  for (std::size_t e = 0; e < flags.size(); ++e) flags[e] = edge_curve_[e] != kNone;
-  return flags;
 }
 
 Creases::Place Creases::place_of_vertex(Index v) const {

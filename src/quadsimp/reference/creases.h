@@ -10,6 +10,13 @@
 
 namespace qs {
 
+//! Per triangle edge (3 * f + k, corner k to k + 1), whether it is a crease, as Creases
+//! chains them: its two triangles' normals, filtered, part by more than `angle_deg`
+//! degrees, and its network is not dropped (see Creases). Border edges are not creases;
+//! all false for angle_deg 0 (no creases asked for) or 180 and over.
+std::vector<char> crease_edges(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency,
+                               double angle_deg);
+
 //! The sharp edges of M0 chained into curves (ours; the paper keeps no feature, and
 //! smoothing rounds them off: a CAD cylinder's rims came out bevelled). An edge is sharp
 //! where its triangles' normals, filtered first so that a scan's noise neither makes nor
@@ -31,9 +38,6 @@ class Creases {
   Creases(const TriMesh& mesh, const std::vector<std::array<Index, 3>>& adjacency, double angle_deg);
 
   bool empty() const { return edges_ == 0; }
-  //! Per triangle edge (3 * f + k), whether it is one of these creases' (every edge sharper than
-  //! the angle but those of the short networks dropped).
-  std::vector<char> edge_flags() const;
   Index n_curves() const { return Index(curves_.size()); }
   Index n_edges() const { return edges_; }
   Index n_corners() const { return corners_; }
