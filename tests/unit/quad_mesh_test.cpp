@@ -294,13 +294,11 @@ std::pair<int, bool> split_triangles(const QuadMesh& m) {
 }  // namespace
 
 TEST(QuadMesh, a_shared_diagonal_renamed_by_a_merge_is_not_a_new_one) {
-  // Quads A and B both have a and b as opposite corners; four more close the fans of a
-  // and b. Shared: a-b, x-u and w-y.
-  enum : Index { a, b, x, y, u, w, p, q, r, s, a2 };
-  std::vector<Vec3> P = {{0, 0, 1},   {0, 0, -1},    {1, 0, 0},  {0, 1, 0},     {-1, 0, 0},
-                         {0, -1, 0}, {0, 0.5, 1.5}, {0.5, 0, 1.5}, {0, 0.5, -1.5}, {0.5, 0, -1.5}};
-  std::vector<std::array<Index, 4>> Q = {{a, x, b, y}, {b, u, a, w}, {x, a, u, p},
-                                         {w, a, y, q}, {u, b, x, r}, {y, b, w, s}};
+  // Shared: a-b (0-1), 2-4 and 3-5.
+  enum : Index { a, b, a2 = 10 };
+  MeshFile file = fixtures::shared_diagonal_quads();
+  std::vector<Vec3>& P = file.positions;
+  std::vector<std::array<Index, 4>>& Q = file.quads;
   const QuadMesh m = QuadMesh::from_faces(P, Q);
   const auto before = shared_diagonals(m);
   ASSERT_EQ(before.size(), 3u);

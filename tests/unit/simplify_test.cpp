@@ -737,16 +737,12 @@ TEST(Simplify, an_inputs_own_shared_diagonals_pass_the_invariant_checks) {
   // Quads A and B both have a and b as opposite corners, with no edge a-b; four more
   // quads close the fans around a and b. The pairing of low-poly meshes makes such quads
   // (pyvista's ant has 10 such pairs after cleaning), which the checks refused before
-  // the first collapse. They now refuse only such diagonals the input did not have.
-  enum : Index { a, b, x, y, u, w, p, q, r, s };
-  const std::vector<Vec3> P = {{0, 0, 1},   {0, 0, -1},    {1, 0, 0},  {0, 1, 0},     {-1, 0, 0},
-                               {0, -1, 0}, {0, 0.5, 1.5}, {0.5, 0, 1.5}, {0, 0.5, -1.5}, {0.5, 0, -1.5}};
-  const std::vector<std::array<Index, 4>> Q = {{a, x, b, y}, {b, u, a, w}, {x, a, u, p},
-                                               {w, a, y, q}, {u, b, x, r}, {y, b, w, s}};
-  QuadMesh m = QuadMesh::from_faces(P, Q);
+  // the first collapse. They now refuse only new ones, not the input's renamed by merges.
+  const MeshFile file = shared_diagonal_quads();
+  QuadMesh m = QuadMesh::from_faces(file.positions, file.quads);
   const auto shared = shared_diagonals(m);
-  ASSERT_EQ(shared.size(), 3u);  // a-b, x-u and w-y
-  const ReferenceSurface ref(triangles_of(MeshFile{P, {}, Q}));
+  ASSERT_EQ(shared.size(), 3u);  // 0-1, 2-4 and 3-5
+  const ReferenceSurface ref(triangles_of(file));
   SimplifyOptions opt;
   opt.target_faces = 4;
   opt.check_invariants = true;
