@@ -294,6 +294,30 @@ TEST(Creases, parts_between_creases_are_made_even_across_them) {
   EXPECT_EQ(report.parity_splits, 1u);
 }
 
+TEST(Creases, a_large_part_with_no_pairing_of_its_own_is_not_searched_whole_at_every_move) {
+  // The cube's two split edges above, on a finer grid: two sides have no pairing of their
+  // own. The searches from their leftovers reach 800 to over 2,000 triangles, and ran again
+  // at each of a leftover's 64 moves, though none could succeed: five times the
+  // conversion's time on a 1.1M-triangle scan at 30 degrees (bench/RESULTS.md). The moves
+  // share one breadth, and Edmonds' algorithm pairs what is left.
+  TriMesh t = tri_cube(40);
+  split_edge(t, Vec3(1, 1, 0.25), Vec3(1, 1, 0.275));
+  split_edge(t, Vec3(0, 1, 0.5), Vec3(0, 1, 0.525));
+  ConvertOptions opt;
+  opt.crease_angle_deg = 30;
+  opt.max_search = 2000;
+  ConvertReport report;
+  validate(tri_to_quad(t, opt, &report));
+  EXPECT_GT(report.crease_midpoints, 0u);
+  EXPECT_EQ(report.pairing_rate(), 1.0);
+  EXPECT_FALSE(report.refined);
+  // Each triangle the greedy pass left is searched from in three rounds at most: within its
+  // part, then across creases away from their ends, then across any crease.
+  const std::size_t leftovers = report.input_triangles - 2 * report.crease_midpoints - report.paired_greedy;
+  EXPECT_GT(leftovers, 0u);
+  EXPECT_LE(report.searched, 3 * leftovers * opt.max_search);
+}
+
 namespace {
 
 // The quads of ref's mesh converted and simplified to `target` keeping its creases at `angle`

@@ -419,13 +419,19 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
     for (Index f = 0; f < t.n_faces(); ++f) {
       // Breadth-first alternating search misses paths through odd cycles (it does not
       // shrink blossoms); moving the free triangle one step and searching again gets
-      // around them in practice.
+      // around them in practice. The moves share one breadth: where no path exists (a part
+      // between creases with no pairing of its own), each search covers the whole part,
+      // and Edmonds' algorithm below settles it in the time of a few such searches.
       Index free = f;
-      for (Index attempt = 0; mate[free] == kNone && attempt < opt.max_moves; ++attempt) {
-        if (augment(free, a, mate, search, opt.max_search, false, crease) != kNone) {
+      Index breadth = opt.max_search;
+      for (Index attempt = 0; mate[free] == kNone && attempt < opt.max_moves && breadth > 0; ++attempt) {
+        const bool paired = augment(free, a, mate, search, breadth, false, crease) != kNone;
+        r.searched += search.queue.size();
+        if (paired) {
           r.paired_augmented += 2;
           break;
         }
+        breadth -= std::min(breadth, Index(search.queue.size()));
         const Index t2 = a[free][attempt % 3];
         if (t2 == kNone || mate[t2] == kNone) continue;
         const Index freed = mate[t2];
@@ -473,6 +479,7 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
   for (Index f = 0; f < n_before; ++f) {
     if (mate[f] != kNone) continue;
     const Index y = augment(f, adj, mate, search, opt.max_search, true, crease);
+    r.searched += search.queue.size();
     if (y == kNone) continue;
     split_border_and_pair(t, adj, crease, mate, y);
     search.resize(t.n_faces());

@@ -9,8 +9,10 @@ namespace qs {
 struct ConvertOptions {
   //! Greedy pairing refuses to merge two triangles bent by more than this (degrees).
   double max_dihedral_deg = 60.0;
-  //! Breadth limit of one search for a path that re-pairs a leftover triangle.
-  Index max_search = 1u << 20;
+  //! Breadth limit of the searches for a path that re-pairs a leftover triangle: the
+  //! triangles they reach, over all of the leftover's moves (about four searches of a
+  //! million-triangle part; Edmonds' algorithm pairs what they leave).
+  Index max_search = 1u << 22;
   //! Times a leftover triangle is moved to a neighbour to retry the search.
   Index max_moves = 64;
   //! Triangles are never paired across an edge sharper than this (degrees; 0: no such
@@ -30,6 +32,8 @@ struct ConvertReport {
   Index paired_augmented = 0;  //!< triangles paired by re-pairing along paths
   Index paired_blossoms = 0;   //!< of those, paired by Edmonds' algorithm after the searches
   Index border_splits = 0;     //!< border edges split where no pairing existed
+  //! Triangles the searches for paths reached, all leftovers together: the pairing's work.
+  std::size_t searched = 0;
   bool refined = false;        //!< fell back to one refinement step
   Index quads = 0;
   //! Share of triangles that ended up in a pair (1 unless the fallback ran).
