@@ -5,7 +5,6 @@
 #include <cstdio>
 
 #include "quadsimp/convert/prepare_input.h"
-#include "quadsimp/mesh/clean.h"
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/metrics/metrics.h"
 #include "quadsimp/reference/reference_surface.h"
@@ -80,8 +79,7 @@ LayerQuads run_conversion(MeshFile layer, const std::string& name, double crease
 
 Fitmaps run_fitmaps(const MeshFile& layer, const std::string& name, double tau, const ProgressFn& progress,
                     Outcome& o) {
-  TriMesh tri = triangles_of(layer);
-  clean(tri, name, log_into(o));
+  TriMesh tri = cleaned_surface(layer, name, log_into(o));
   FitmapOptions fo;
   fo.tau = tau;
   fo.progress = progress;
@@ -110,8 +108,7 @@ void run_quality(const MeshFile& quads, const std::string& quads_name, const Mes
   } catch (const InvalidInput& e) {
     throw InvalidInput(quads_name + ": " + e.what());
   }
-  TriMesh tri = triangles_of(reference);
-  clean(tri, reference_name, log_into(o));
+  TriMesh tri = cleaned_surface(reference, reference_name, log_into(o));
   const ReferenceSurface ref(std::move(tri));
   const QuadQuality qq = quad_quality(q, &ref);
   const SurfaceDistance d = surface_distance(q, ref, samples);

@@ -16,7 +16,6 @@
 #include "quadsimp/io/images.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
-#include "quadsimp/mesh/clean.h"
 #include "quadsimp/metrics/metrics.h"
 #include "quadsimp/reference/reference_surface.h"
 #include "quadsimp/simplify/pipeline.h"
@@ -226,8 +225,7 @@ int run_fitmap(const FitmapArgs& a) {
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
-    TriMesh tri = triangles_of(read_mesh(a.input));
-    clean(tri, a.input, stderr_log(a.quiet));
+    TriMesh tri = cleaned_surface(read_mesh(a.input), a.input, stderr_log(a.quiet));
     FitmapOptions fo;
     fo.tau = a.tau;
     fo.progress = progress_bar(a.quiet);
@@ -303,8 +301,7 @@ int run_stats(const StatsArgs& a) {
     } catch (const std::exception& e) {
       throw InvalidInput(a.quads + ": not a valid quad mesh (" + e.what() + ")");
     }
-    TriMesh tri = triangles_of(read_mesh(a.reference));
-    clean(tri, a.reference);
+    TriMesh tri = cleaned_surface(read_mesh(a.reference), a.reference);
     const ReferenceSurface ref(std::move(tri));
     const QuadQuality q = quad_quality(quads, &ref);
     const SurfaceDistance d = surface_distance(quads, ref, a.samples);

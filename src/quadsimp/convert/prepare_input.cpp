@@ -32,10 +32,16 @@ double thin_area_share(const TriMesh& t) {
 
 }  // namespace
 
+TriMesh cleaned_surface(const MeshFile& file, const std::string& name, const LogFn& log, CleanReport* report) {
+  TriMesh t = triangles_of(file);
+  const CleanReport r = clean(t, name, log, !file.is_pure_quad());
+  if (report) *report = r;
+  return t;
+}
+
 Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions& options, const LogFn& log) {
   Input in;
-  in.reference = triangles_of(file);
-  in.clean = clean(in.reference, name, log);
+  in.reference = cleaned_surface(file, name, log, &in.clean);
   sort_spatially(in.reference);
   const double thin = log ? thin_area_share(in.reference) : 0.0;
   if (thin > kThinShare)

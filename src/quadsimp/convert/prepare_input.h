@@ -25,6 +25,12 @@ struct Input {
   MeshFile source;
 };
 
+//! The surface of `file` (its triangles, quads split in two), cleaned (clean()) as
+//! prepare_input() cleans it: a quad mesh's folds are not laid flat. What the fitmaps and
+//! the distances of a file are computed on.
+TriMesh cleaned_surface(const MeshFile& file, const std::string& name, const LogFn& log = {},
+                        CleanReport* report = nullptr);
+
 //! Repairs what has a standard repair (logged through `log`) and converts triangles
 //! to quads; a pure quad mesh is taken as it is, unless cleaning repaired it: then its
 //! triangles are converted like any others. `name` prefixes every message.
