@@ -47,9 +47,7 @@ struct CleanReport {
 //! their vertices, and if need be up to eight rings of vertices around them while the
 //! region faces the way the patch's own surroundings do (not those on the border). Only patches that are discs
 //! are tried: a band round a post with an overhanging wall stays. Without `lay_folds_flat`
-//! no vertex moves: a quad mesh's is someone's surface, not a raw scan, and its thin parts
-//! can have edges as sharp as a fold's bounds (an armadillo of 1,000 quads, ours, had a
-//! claw's tip laid flat, its vertices moved by up to 28% of the diagonal).
+//! no vertex moves (cleaned_surface() takes a quad mesh so unless a quad folds).
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
 //!        out-of-range indices, a size outside 1e-30 to 1e30 across (the faces' bounding
 //!        box), a non-orientable component. `what` is one sentence;
