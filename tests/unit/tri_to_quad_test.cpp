@@ -258,15 +258,11 @@ TEST(PrepareInput, a_quad_meshs_folds_are_laid_flat_only_where_a_quad_folds) {
   // A quad grid with a column of vertices pushed past its neighbours, a Z-fold: its end
   // quads fold over themselves, and it is laid flat as its triangles are.
   const int n = 64;
+  const QuadMesh flat = quad_grid(n, n);
   MeshFile grid;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) grid.positions.emplace_back(double(i) / n, double(j) / n, 0.0);
-  for (int j = 40; j < 52; ++j) grid.positions[j * (n + 1) + 40].x() += 3.5 / n;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const Index a = Index(j * (n + 1) + i);
-      grid.quads.push_back({a, a + 1, a + n + 2, a + n + 1});
-    }
+  grid.positions = flat.positions();
+  grid.quads = flat.quads();
+  for (int j = 40; j < 52; ++j) grid.positions[j * (n + 1) + 40].x() += 3.5;
   const Input folded = prepare_input(grid, "grid");
   EXPECT_EQ(folded.clean.unfolded_patches, 1u);
   EXPECT_FALSE(folded.was_pure_quad);  // paired again from its mended triangles
