@@ -47,7 +47,8 @@ struct CleanReport {
 //! their vertices, and if need be up to eight rings of vertices around them while the
 //! region faces the way the patch's own surroundings do (not those on the border). Only patches that are discs
 //! are tried: a band round a post with an overhanging wall stays. Without `lay_folds_flat`
-//! no vertex moves (cleaned_surface() takes a quad mesh so unless a quad folds).
+//! such patches stay as they are (cleaned_surface() so takes a quad mesh none of whose
+//! quads folds).
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
 //!        out-of-range indices, a size outside 1e-30 to 1e30 across (the faces' bounding
 //!        box), a non-orientable component. `what` is one sentence;
