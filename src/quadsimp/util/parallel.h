@@ -1,6 +1,7 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
@@ -24,9 +25,9 @@ void parallel_for_as_here(const Range& range, const Body& body) {
 //! The same over the indices first to last (excluded), `f` called with each.
 template <class Index, class Function>
 void parallel_for_as_here(Index first, Index last, const Function& f) {
-  tbb::task_group_context context;
-  context.capture_fp_settings();
-  tbb::parallel_for(first, last, f, context);
+  parallel_for_as_here(tbb::blocked_range<Index>(first, last), [&](const tbb::blocked_range<Index>& r) {
+    for (Index i = r.begin(); i != r.end(); ++i) f(i);
+  });
 }
 
 }  // namespace qs
