@@ -255,12 +255,11 @@ TEST(PrepareInput, a_quad_meshs_folds_are_laid_flat_only_where_a_quad_folds) {
   params.target_faces = 200;
   simplify_input(in, ref, params);
   MeshFile quads, triangles;
-  quads.positions = triangles.positions = in.quads.positions();
+  quads.positions = in.quads.positions();
   quads.quads = in.quads.quads();
-  for (const auto& q : quads.quads) {
-    triangles.triangles.push_back({q[0], q[1], q[2]});
-    triangles.triangles.push_back({q[0], q[2], q[3]});
-  }
+  TriMesh split = triangles_of(quads);  // as cleaning takes the quads
+  triangles.positions = std::move(split.positions);
+  triangles.triangles = std::move(split.faces);
   const Input as_quads = prepare_input(quads, "quads");
   EXPECT_TRUE(as_quads.was_pure_quad);
   EXPECT_EQ(as_quads.clean.moved_vertices, 0u);
