@@ -622,6 +622,34 @@ TEST(Clean, lays_flat_two_folds_that_each_keep_the_other_in_its_rings) {
   }
 }
 
+TEST(Clean, lays_flat_only_the_folds_it_is_asked_to) {
+  // Two columns of a grid, far apart, each pushed past its neighbours. Asked for the folds
+  // at one of the first column's pushed vertices, only that one is laid flat; asked for
+  // none, nothing moves.
+  constexpr int n = 64;
+  const TriMesh grid = tri_grid(n, n);
+  TriMesh folded = grid;
+  for (int j = 30; j < 35; ++j)
+    for (int column : {16, 48}) folded.positions[j * (n + 1) + column].x() += 1.5 / n;
+  ASSERT_EQ(faces_facing_down(folded), 20u);
+  TriMesh t = folded;
+  CleanOptions options;
+  options.folds_only_at = {folded.positions[32 * (n + 1) + 16]};
+  const CleanReport one = clean(t, "mesh", {}, options);
+  EXPECT_EQ(one.unfolded_patches, 1u);
+  EXPECT_EQ(faces_facing_down(t), 10u);
+  for (Index v = 0; v < t.n_vertices(); ++v) {
+    const double x = grid.positions[v].x() * n;
+    if (x > 32) EXPECT_EQ(t.positions[v], folded.positions[v]) << v;
+    else EXPECT_NEAR((t.positions[v] - grid.positions[v]).norm(), 0, 1e-6 / n) << v;
+  }
+  t = folded;
+  options.lay_folds_flat = false;
+  const CleanReport none = clean(t, "mesh", {}, options);
+  EXPECT_EQ(none.unfolded_patches, 0u);
+  EXPECT_EQ(t.positions, folded.positions);
+}
+
 // Two patches meshed apart, as CAD tessellations do: a grid of 8 x 8 cells and, beside
 // it, one of 8 x 16 or 8 x 12 cells, so that along their common side every other vertex of
 // the finer one is a copy of the coarser one's, or only every third. The others lie along

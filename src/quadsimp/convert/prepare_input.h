@@ -26,7 +26,7 @@ struct Input {
 };
 
 //! The surface of `file` (its triangles, quads split in two), cleaned (clean()) as
-//! prepare_input() cleans it: a pure quad mesh's folds are laid flat only if one of its
+//! prepare_input() cleans it: a pure quad mesh's folds are laid flat only where one of its
 //! quads folds over itself. What the fitmaps and the distances of a file are computed on.
 TriMesh cleaned_surface(const MeshFile& file, const std::string& name, const LogFn& log = {},
                         CleanReport* report = nullptr);

@@ -480,7 +480,7 @@ void check_size(const TriMesh& m, const std::string& src) {
 
 }  // namespace
 
-CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, bool lay_folds_flat) {
+CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, const CleanOptions& options) {
   CleanReport r;
   if (m.positions.empty()) throw InvalidInput(src + ": the mesh is empty (no vertices)");
   if (m.faces.empty())
@@ -523,7 +523,8 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, bool lay
   split_nonmanifold_vertices(m, r);  // faces keep their neighbours
   std::vector<Vec3> normals = unit_normals(m);  // for both mends
   r.flipped_edges = mend_by_edge_flips(m, adj, normals);
-  if (lay_folds_flat) r.moved_vertices = unfold_patches(m, adj, normals, r.unfolded_patches);
+  if (options.lay_folds_flat)
+    r.moved_vertices = unfold_patches(m, adj, normals, options.folds_only_at, r.unfolded_patches);
   remove_unreferenced(m, r);
   // merged copies are not "unreferenced"
   r.removed_unreferenced_vertices -= r.merged_duplicate_vertices + r.merged_close_vertices;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "quadsimp/mesh/tri_mesh.h"
 #include "quadsimp/util/progress.h"
@@ -31,6 +32,15 @@ struct CleanReport {
   }
 };
 
+//! Which of the small patches folded back onto the surface clean() lays flat.
+struct CleanOptions {
+  //! false: none (a surface someone made, whose sharp thin parts only look like folds).
+  bool lay_folds_flat = true;
+  //! If not empty, only the patches with a vertex at one of these points are laid flat
+  //! (cleaned_surface(): the corners of a quad mesh's quads that fold over themselves).
+  std::vector<Vec3> folds_only_at;
+};
+
 //! Makes `mesh` a clean, oriented, edge- and vertex-manifold triangle mesh, or throws.
 //!
 //! Repairs (each logged): exact-duplicate vertices merged (those on a border, or all of
@@ -46,14 +56,13 @@ struct CleanReport {
 //! flipping an edge, small patches folded back (folded_patches()) laid flat by moving
 //! their vertices, and if need be up to eight rings of vertices around them while the
 //! region faces the way the patch's own surroundings do (not those on the border). Only patches that are discs
-//! are tried: a band round a post with an overhanging wall stays. Without `lay_folds_flat`
-//! such patches stay as they are (cleaned_surface() so takes a quad mesh none of whose
-//! quads folds).
+//! are tried: a band round a post with an overhanging wall stays. `options` can keep
+//! some or all such patches as they are (CleanOptions).
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
 //!        out-of-range indices, a size outside 1e-30 to 1e30 across (the faces' bounding
 //!        box), a non-orientable component. `what` is one sentence;
 //!        `source` (a file name) prefixes it.
 CleanReport clean(TriMesh& mesh, const std::string& source = "mesh", const LogFn& log = {},
-                  bool lay_folds_flat = true);
+                  const CleanOptions& options = {});
 
 }  // namespace qs

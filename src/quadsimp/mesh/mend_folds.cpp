@@ -288,10 +288,28 @@ std::vector<char> patches_that_are_discs(const TriMesh& m, const std::vector<Ind
   return disc;
 }
 
+// Keeps `tried` only for the patches with a vertex at one of `points`. Cleaning moves no
+// vertex before the patches are laid flat, and merges only equal ones (or border
+// vertices 1e-6 of the diagonal apart), so the points are compared exactly.
+void only_patches_at(const TriMesh& m, const std::vector<Index>& patch, const std::vector<Vec3>& points,
+                     std::vector<char>& tried) {
+  const auto before = [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  std::vector<Vec3> sorted = points;
+  std::sort(sorted.begin(), sorted.end(), before);
+  std::vector<char> at(tried.size(), 0);
+  for (Index f = 0; f < m.n_faces(); ++f)
+    if (const Index p = patch[f]; p != kNone && !at[p])
+      for (Index v : m.faces[f])
+        at[p] = at[p] || std::binary_search(sorted.begin(), sorted.end(), m.positions[v], before);
+  for (std::size_t p = 0; p < tried.size(); ++p) tried[p] = tried[p] && at[p];
+}
+
 }  // namespace
 
 Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                     Index& mended) {
+                     const std::vector<Vec3>& only_at, Index& mended) {
   std::vector<Index> patch;
   // A sheet's two sides are about half of it each. 1e-4 missed five vertices of a
   // 128 x 128 grid pushed past their neighbours, 1e-3 a column of twelve pushed 3.5
@@ -407,14 +425,15 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
     vs.resize(own);
     return false;
   };
-  const std::vector<char> disc = patches_that_are_discs(m, patch, patches);
+  std::vector<char> tried = patches_that_are_discs(m, patch, patches);
+  if (!only_at.empty()) only_patches_at(m, patch, only_at, tried);
   // A patch whose rings met another patch's vertices is tried again at the end, once every
   // patch has moved: whether two folds a few triangles apart both lay flat depended on
   // which came first. Letting the second try take the vertices of patches laid flat was
   // not needed for that, and is not done: no try moves another patch's vertices.
   std::vector<Index> retry, left;
   for (Index p = 0; p < patches; ++p)
-    if (disc[p] && !lay_flat(p, true)) (met ? retry : left).push_back(p);
+    if (tried[p] && !lay_flat(p, true)) (met ? retry : left).push_back(p);
   for (Index p : retry)
     if (!lay_flat(p, true)) left.push_back(p);
   // Noise turns triangles around a fold too, and a region with one of them left turned

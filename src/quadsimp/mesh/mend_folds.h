@@ -16,9 +16,10 @@ namespace qs::detail {
 Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj, std::vector<Vec3>& normals);
 
 //! Lays flat the small patches folded back onto the surface (folded_patches() with
-//! kLaidFlatShare and kLaidFlatCos) that are discs, by moving their vertices and if need be
-//! the rings around them; returns the vertices moved and sets `mended` to the patches.
+//! kLaidFlatShare and kLaidFlatCos) that are discs, and if `only_at` is not empty have a
+//! vertex at one of its points, by moving their vertices and if need be the rings around
+//! them; returns the vertices moved and sets `mended` to the patches.
 Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                     Index& mended);
+                     const std::vector<Vec3>& only_at, Index& mended);
 
 }  // namespace qs::detail
