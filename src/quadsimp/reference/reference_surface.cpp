@@ -115,7 +115,8 @@ Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
   return a + ab * u + ac * v;
 }
 
-ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(std::make_unique<Bvh>()) {
+ReferenceSurface::ReferenceSurface(TriMesh mesh, EmbreeKernels kernels)
+    : mesh_(std::move(mesh)), bvh_(std::make_unique<Bvh>()) {
   const auto& P = mesh_.positions;
   diagonal_ = qs::bbox_diagonal(P);
   normals_.resize(mesh_.n_faces());
@@ -137,7 +138,7 @@ ReferenceSurface::ReferenceSurface(TriMesh mesh) : mesh_(std::move(mesh)), bvh_(
         border_segments_.emplace_back(a, mesh_.positions[mesh_.faces[f][(k + 1) % 3]] - a);
       }
 
-  bvh_->device = rtcNewDevice("threads=0");
+  bvh_->device = rtcNewDevice(kernels == EmbreeKernels::Sse2 ? "threads=0,isa=sse2" : "threads=0");
   if (!bvh_->device) throw std::runtime_error("Embree: cannot create a device");
   rtcSetDeviceErrorFunction(bvh_->device, embree_error, &bvh_->error);
   bvh_->scene = rtcNewScene(bvh_->device);

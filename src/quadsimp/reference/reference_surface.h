@@ -19,13 +19,23 @@ struct SurfacePoint {
   bool found() const { return face != kNone; }
 };
 
+//! Which of Embree's kernels answer the queries. Embree picks the widest the CPU has
+//! (SSE2 to AVX-512), and their hits differ in the last bits, which decide between
+//! near-equal moves: glmark2's bunny to 5,000 quads came out three ways on one machine
+//! with SSE2, AVX2 and AVX-512 kernels (bench/RESULTS.md, "The same quads on every
+//! machine"). SSE2 kernels exist on every x86-64 CPU, and were as fast here.
+enum class EmbreeKernels {
+  Sse2,    //!< the same results on every x86-64 CPU (the default)
+  Native,  //!< the CPU's widest: results depend on the CPU
+};
+
 //! The input surface M0 with an Embree 3 BVH: ray projection along a direction,
 //! closest point, and barycentric lookup of per-vertex fields. Queries are const and
 //! thread-safe. The only class that sees Embree.
 class ReferenceSurface {
  public:
   //! Copies the mesh (it must be clean: see clean()).
-  explicit ReferenceSurface(TriMesh mesh);
+  explicit ReferenceSurface(TriMesh mesh, EmbreeKernels kernels = EmbreeKernels::Sse2);
   ~ReferenceSurface();
   ReferenceSurface(const ReferenceSurface&) = delete;
   ReferenceSurface& operator=(const ReferenceSurface&) = delete;
