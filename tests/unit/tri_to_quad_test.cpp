@@ -277,8 +277,8 @@ TEST(PrepareInput, a_quad_meshs_folds_are_laid_flat_only_where_a_quad_folds) {
   const Input together = prepare_input(both, "both");
   EXPECT_EQ(together.clean.unfolded_patches, 1u);
   EXPECT_EQ(together.clean.moved_vertices, folded.clean.moved_vertices);
-  // Results can differ between machines (README, Limits): one without such a tip tests
-  // nothing here.
+  // A result without such a tip (from other code, or on a machine whose results differ:
+  // README, Limits) tests nothing here.
   if (prepare_input(triangles, "triangles").clean.unfolded_patches == 0)
     GTEST_SKIP() << "this machine's result has no fold-like tip";
 }

@@ -289,8 +289,9 @@ std::vector<char> patches_that_are_discs(const TriMesh& m, const std::vector<Ind
 }
 
 // Keeps `tried` only for the patches with a vertex at one of `points`. Cleaning moves no
-// vertex before the patches are laid flat, and merges only equal ones (or border
-// vertices 1e-6 of the diagonal apart), so the points are compared exactly.
+// vertex before the patches are laid flat and keeps one of the vertices it merges, so the
+// points are compared exactly (only a border vertex merged with another 1e-6 of the
+// diagonal away can be missed).
 void only_patches_at(const TriMesh& m, const std::vector<Index>& patch, const std::vector<Vec3>& points,
                      std::vector<char>& tried) {
   const auto before = [](const Vec3& a, const Vec3& b) {
