@@ -544,8 +544,7 @@ TEST_F(Cli, the_m_slack_reaches_the_loop) {
 TEST_F(Cli, faces_left_beyond_the_reach_are_reported) {
   // The paper's halting rule runs the smooth moai on to 38 quads, and the rotations and
   // smoothing after its collapses (not checked) leave some faces beyond the reach (10 of
-  // 38). The sphere halted as the pipeline
-  // does: none, and no note.
+  // 38). The sphere halted as the pipeline does: none, and no note.
   const std::string moai = fixtures::shared_dataset("moai");
   if (moai.empty()) GTEST_SKIP() << "../shared/datasets not found";
   const std::string args = "simplify " + moai + " " + p("m.ply") + " --adaptive --auto-halt";
