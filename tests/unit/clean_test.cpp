@@ -622,6 +622,29 @@ TEST(Clean, lays_flat_two_folds_that_each_keep_the_other_in_its_rings) {
   }
 }
 
+TEST(Clean, says_how_far_laying_folds_flat_moved_vertices) {
+  // A column pushed 1.5 cells on a 128 x 128 grid (moves of 0.8% of the diagonal, as a
+  // scan's folds move theirs) and 5 cells on a 48 x 48 one (7%, as a coarse mesh's sharp
+  // tip taken for a fold moved its vertices): the log gives the longest move, and says what
+  // so long a one more likely is.
+  struct Fold {
+    int n;
+    double cells;
+    const char* share;
+    bool long_move;
+  };
+  for (const Fold& fold : {Fold{128, 1.5, "0.83%", false}, Fold{48, 5, "7.4%", true}}) {
+    SCOPED_TRACE(fold.n);
+    TriMesh t = folded_grid(fold.n, nullptr, 5, fold.cells);
+    std::string log;
+    const CleanReport r = clean(t, "in", [&](std::string_view m) { log += m; });
+    EXPECT_EQ(r.unfolded_patches, 1u);
+    EXPECT_NE(log.find("by up to " + std::string(fold.share) + " of the bounding box's diagonal)"), std::string::npos)
+        << log;
+    EXPECT_EQ(log.find("more often a coarse mesh's sharp thin part") != std::string::npos, fold.long_move) << log;
+  }
+}
+
 TEST(Clean, lays_flat_only_the_folds_it_is_asked_to) {
   // Two columns of a grid, far apart, each pushed past its neighbours. Asked for the folds
   // at one of the first column's pushed vertices, only that one is laid flat; asked for

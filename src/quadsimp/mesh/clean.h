@@ -23,6 +23,7 @@ struct CleanReport {
   Index flipped_edges = 0;     //!< edges flipped to mend caps and single folded-back triangles
   Index unfolded_patches = 0;  //!< small patches folded back (folded_patches()), laid flat
   Index moved_vertices = 0;    //!< the vertices moved to lay them flat
+  double farthest_move = 0;    //!< the longest of those moves
   //! Whether the faces themselves changed (a vertex merged, split or moved, a face
   //! removed or turned); dropping unreferenced vertices does not count.
   bool changed_faces() const {

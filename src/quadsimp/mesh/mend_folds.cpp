@@ -221,7 +221,7 @@ void move_to_neighbour_means(TriMesh& m, const CornersAround& around, const std:
 // follow a Z-fold, and the simplifier's care over a marked one (over_flap()) is not
 // enough everywhere: on glmark2's bunny split before cleaning it left a flipped quad and
 // homeometry down to 0.18 at 20,000 quads, on the armadillo split twice two flipped quads
-// and 0.07. Returns the vertices moved; `mended` counts the patches laid flat.
+// and 0.07.
 constexpr int kUnfoldRings = 8;
 // Rings are added while fewer vertices than this move: a large patch that will not lie
 // flat costs sweeps over all of it for each ring (the unit tests' thin leaf on a stalk,
@@ -309,8 +309,8 @@ void only_patches_at(const TriMesh& m, const std::vector<Index>& patch, const st
 
 }  // namespace
 
-Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                     const std::vector<Vec3>& only_at, Index& mended) {
+Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
+                        const std::vector<Vec3>& only_at) {
   std::vector<Index> patch;
   // A sheet's two sides are about half of it each. 1e-4 missed five vertices of a
   // 128 x 128 grid pushed past their neighbours, 1e-3 a column of twelve pushed 3.5
@@ -319,7 +319,8 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
   // a stalk, is a patch too, but laid flat it still faces against its surroundings, and
   // the check below puts it back.
   Index patches = folded_patches(m, adj, normals, patch, kLaidFlatShare, kLaidFlatCos);
-  if (patches == 0) return 0;
+  Unfolded done;
+  if (patches == 0) return done;
   const CornersAround around = corners_around(m);
   std::vector<char> border(m.n_vertices(), 0);
   for (Index f = 0; f < m.n_faces(); ++f)
@@ -340,7 +341,6 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
   std::vector<Index> row(m.n_vertices(), kNone);  // move_to_neighbour_means()' unknowns
   Index visit = 0, tries = 0;  // mark `seen` per region and `in_try` per try
   std::vector<Vec3> before;
-  Index moved = 0;
   bool met = false;  // whether the last try's rings met vertices another patch holds
   // Whether triangle f faces against `facing`, plus its edges turning back by more than
   // kFoldedBackCos: 0 for a sound triangle.
@@ -417,7 +417,9 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
         defects_after += d;
       }
       if (flat && (strict || defects_after < defects_before)) {
-        ++mended, moved += Index(vs.size());
+        ++done.patches, done.vertices += Index(vs.size());
+        for (std::size_t i = 0; i < vs.size(); ++i)
+          done.farthest = std::max(done.farthest, (P[vs[i]] - before[i]).norm());
         return true;
       }
       for (std::size_t i = 0; i < vs.size(); ++i) P[vs[i]] = before[i];
@@ -444,7 +446,7 @@ Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, c
   // patches no strict try laid flat come here, so inputs without such leave as they were.
   std::sort(left.begin(), left.end());
   for (Index p : left) lay_flat(p, false);
-  return moved;
+  return done;
 }
 
 }  // namespace qs::detail

@@ -15,11 +15,18 @@ namespace qs::detail {
 //! it) and `normals` (the faces' unit normals) are kept up to date.
 Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj, std::vector<Vec3>& normals);
 
+//! What unfold_patches() laid flat.
+struct Unfolded {
+  Index patches = 0;
+  Index vertices = 0;   //!< moved
+  double farthest = 0;  //!< the longest move
+};
+
 //! Lays flat the small patches folded back onto the surface (folded_patches() with
 //! kLaidFlatShare and kLaidFlatCos) that are discs, and if `only_at` is not empty have a
 //! vertex at one of its points, by moving their vertices and if need be the rings around
-//! them; returns the vertices moved and sets `mended` to the patches.
-Index unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                     const std::vector<Vec3>& only_at, Index& mended);
+//! them.
+Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
+                        const std::vector<Vec3>& only_at);
 
 }  // namespace qs::detail
