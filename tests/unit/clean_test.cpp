@@ -657,7 +657,7 @@ TEST(Clean, lays_flat_only_the_folds_it_is_asked_to) {
   ASSERT_EQ(faces_facing_down(folded), 20u);
   TriMesh t = folded;
   CleanOptions options;
-  options.folds_only_at = {folded.positions[32 * (n + 1) + 16]};
+  options.folds_only_at = std::vector<Vec3>{folded.positions[32 * (n + 1) + 16]};
   const CleanReport one = clean(t, "mesh", {}, options);
   EXPECT_EQ(one.unfolded_patches, 1u);
   EXPECT_EQ(faces_facing_down(t), 10u);
@@ -667,7 +667,7 @@ TEST(Clean, lays_flat_only_the_folds_it_is_asked_to) {
     else EXPECT_NEAR((t.positions[v] - grid.positions[v]).norm(), 0, 1e-6 / n) << v;
   }
   t = folded;
-  options.lay_folds_flat = false;
+  options.folds_only_at.emplace();  // at no point
   const CleanReport none = clean(t, "mesh", {}, options);
   EXPECT_EQ(none.unfolded_patches, 0u);
   EXPECT_EQ(t.positions, folded.positions);

@@ -45,11 +45,11 @@ TriMesh cleaned_surface(const MeshFile& file, const std::string& name, const Log
   CleanOptions options;
   if (file.is_pure_quad()) {
     const auto& P = file.positions;
+    auto& points = options.folds_only_at.emplace();
     for (const auto& q : file.quads)  // indices out of range: clean() refuses them
       if (std::all_of(q.begin(), q.end(), [&](Index v) { return v < P.size(); }) &&
           quad_folds(P[q[0]], P[q[1]], P[q[2]], P[q[3]]))
-        for (Index v : q) options.folds_only_at.push_back(P[v]);
-    options.lay_folds_flat = !options.folds_only_at.empty();
+        for (Index v : q) points.push_back(P[v]);
   }
   TriMesh t = triangles_of(file);
   const CleanReport r = clean(t, name, log, options);

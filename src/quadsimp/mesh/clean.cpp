@@ -545,7 +545,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, const Cl
   split_nonmanifold_vertices(m, r);  // faces keep their neighbours
   std::vector<Vec3> normals = unit_normals(m);  // for both mends
   r.flipped_edges = mend_by_edge_flips(m, adj, normals);
-  if (options.lay_folds_flat) {
+  if (!options.folds_only_at || !options.folds_only_at->empty()) {
     const detail::Unfolded u = unfold_patches(m, adj, normals, options.folds_only_at);
     r.unfolded_patches = u.patches, r.moved_vertices = u.vertices, r.farthest_move = u.farthest;
   }

@@ -1,6 +1,7 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,11 +36,11 @@ struct CleanReport {
 
 //! Which of the small patches folded back onto the surface clean() lays flat.
 struct CleanOptions {
-  //! false: none (a surface someone made, whose sharp thin parts only look like folds).
-  bool lay_folds_flat = true;
-  //! If not empty, only the patches with a vertex at one of these points are laid flat
-  //! (cleaned_surface(): the corners of a quad mesh's quads that fold over themselves).
-  std::vector<Vec3> folds_only_at;
+  //! Unset: all of them. Set: only those with a vertex at one of these points, so none if
+  //! it is empty (cleaned_surface(): the corners of a quad mesh's quads that fold over
+  //! themselves; a quad mesh is someone's surface, whose sharp thin parts only look like
+  //! folds).
+  std::optional<std::vector<Vec3>> folds_only_at;
 };
 
 //! Makes `mesh` a clean, oriented, edge- and vertex-manifold triangle mesh, or throws.

@@ -310,7 +310,7 @@ void only_patches_at(const TriMesh& m, const std::vector<Index>& patch, const st
 }  // namespace
 
 Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                        const std::vector<Vec3>& only_at) {
+                        const std::optional<std::vector<Vec3>>& only_at) {
   std::vector<Index> patch;
   // A sheet's two sides are about half of it each. 1e-4 missed five vertices of a
   // 128 x 128 grid pushed past their neighbours, 1e-3 a column of twelve pushed 3.5
@@ -429,7 +429,7 @@ Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj
     return false;
   };
   std::vector<char> tried = patches_that_are_discs(m, patch, patches);
-  if (!only_at.empty()) only_patches_at(m, patch, only_at, tried);
+  if (only_at) only_patches_at(m, patch, *only_at, tried);
   // A patch whose rings met another patch's vertices is tried again at the end, once every
   // patch has moved: whether two folds a few triangles apart both lay flat depended on
   // which came first. Letting the second try take the vertices of patches laid flat was

@@ -4,6 +4,7 @@
 // Internal to clean(): the repairs of caps and of triangles folded back onto the surface.
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "quadsimp/mesh/tri_mesh.h"
@@ -23,10 +24,9 @@ struct Unfolded {
 };
 
 //! Lays flat the small patches folded back onto the surface (folded_patches() with
-//! kLaidFlatShare and kLaidFlatCos) that are discs, and if `only_at` is not empty have a
-//! vertex at one of its points, by moving their vertices and if need be the rings around
-//! them.
+//! kLaidFlatShare and kLaidFlatCos) that are discs, and if `only_at` is set have a vertex
+//! at one of its points, by moving their vertices and if need be the rings around them.
 Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                        const std::vector<Vec3>& only_at);
+                        const std::optional<std::vector<Vec3>>& only_at);
 
 }  // namespace qs::detail
