@@ -479,25 +479,23 @@ double check_size(const TriMesh& m, const std::string& src) {
                      "Normalize\")");
 }
 
-// Laying folds flat moved vertices by at most 0.43% of the bounding box's diagonal on the
-// datasets, 1.5% on MeshLab's decimations of them, and 1.0 to 2.6% on 16 copies of
-// bunny.ply, the gargoyle and the armadillo with noise of a third of their mean edge (500
-// to 2,500 folds each); coarse meshes' sharp tips taken for folds, 1.3 to 32%, 7 of 9 of
-// them over this share (bench/RESULTS.md). Past it the log says what such a move more
-// likely is.
-constexpr double kLongFoldMove = 0.05;
-
-std::string unfolded_note(const CleanReport& r, double diagonal) {
-  const double share = r.farthest_move / diagonal;
+std::string percent_of(double share) {
   char percent[32];
   std::snprintf(percent, sizeof percent, "%.2g%%", 100 * share);
-  std::string note = std::to_string(r.unfolded_patches) + " patches of triangles folded back onto the surface laid "
-                     "flat (" + std::to_string(r.moved_vertices) + " vertices moved, each to the mean of its "
-                     "neighbours, by up to " + percent + " of the bounding box's diagonal)";
-  if (share > kLongFoldMove)
-    note += ": moves that long are more often a coarse mesh's sharp thin part, taken for a fold, than a scan's "
-            "fold (see Limits in quadsimp's README)";
-  return note;
+  return percent;
+}
+
+std::string unfolded_note(const CleanReport& r, double diagonal) {
+  return std::to_string(r.unfolded_patches) + " patches of triangles folded back onto the surface laid flat (" +
+         std::to_string(r.moved_vertices) + " vertices moved, each to the mean of its neighbours, by up to " +
+         percent_of(r.farthest_move / diagonal) + " of the bounding box's diagonal)";
+}
+
+std::string kept_note(const CleanReport& r, double diagonal) {
+  return std::to_string(r.kept_far_folds) + " patches of triangles that look folded back onto the surface left as "
+         "they are: laying them flat would move vertices by at least " + percent_of(r.least_kept_move / diagonal) +
+         " of the bounding box's diagonal (a scan's folds needed at most 2.8%), so they are most likely a coarse "
+         "mesh's sharp thin parts (see Limits in quadsimp's README)";
 }
 
 }  // namespace
@@ -546,8 +544,10 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, const Cl
   std::vector<Vec3> normals = unit_normals(m);  // for both mends
   r.flipped_edges = mend_by_edge_flips(m, adj, normals);
   if (!options.folds_only_at || !options.folds_only_at->empty()) {
-    const detail::Unfolded u = unfold_patches(m, adj, normals, options.folds_only_at);
+    const detail::Unfolded u =
+        unfold_patches(m, adj, normals, options.folds_only_at, options.longest_fold_move * diagonal);
     r.unfolded_patches = u.patches, r.moved_vertices = u.vertices, r.farthest_move = u.farthest;
+    r.kept_far_folds = u.kept, r.least_kept_move = u.least_kept;
   }
   remove_unreferenced(m, r);
   // merged copies are not "unreferenced"
@@ -574,6 +574,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, const Cl
          "edges flipped to mend caps (triangles whose height is under 1e-3 of their longest edge) and "
          "single triangles folded back onto their neighbours");
     if (r.unfolded_patches) log(src + ": " + unfolded_note(r, diagonal));
+    if (r.kept_far_folds) log(src + ": " + kept_note(r, diagonal));
   }
   return r;
 }

@@ -25,6 +25,10 @@ struct CleanReport {
   Index unfolded_patches = 0;  //!< small patches folded back (folded_patches()), laid flat
   Index moved_vertices = 0;    //!< the vertices moved to lay them flat
   double farthest_move = 0;    //!< the longest of those moves
+  //! Patches left as they were because laying them flat would move a vertex further than
+  //! CleanOptions::longest_fold_move, and the least such move among them.
+  Index kept_far_folds = 0;
+  double least_kept_move = 0;
   //! Whether the faces themselves changed (a vertex merged, split or moved, a face
   //! removed or turned); dropping unreferenced vertices does not count.
   bool changed_faces() const {
@@ -41,6 +45,10 @@ struct CleanOptions {
   //! themselves; a quad mesh is someone's surface, whose sharp thin parts only look like
   //! folds).
   std::optional<std::vector<Vec3>> folds_only_at;
+  //! A patch whose laying flat would move a vertex further than this share of the bounding
+  //! box's diagonal stays as it is. A scan's folds, noisy or not, needed at most 2.8%; a
+  //! coarse mesh's sharp thin parts taken for folds up to 32% (bench/RESULTS.md).
+  double longest_fold_move = 0.05;
 };
 
 //! Makes `mesh` a clean, oriented, edge- and vertex-manifold triangle mesh, or throws.

@@ -310,7 +310,7 @@ void only_patches_at(const TriMesh& m, const std::vector<Index>& patch, const st
 }  // namespace
 
 Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                        const std::optional<std::vector<Vec3>>& only_at) {
+                        const std::optional<std::vector<Vec3>>& only_at, double max_move) {
   std::vector<Index> patch;
   // A sheet's two sides are about half of it each. 1e-4 missed five vertices of a
   // 128 x 128 grid pushed past their neighbours, 1e-3 a column of twelve pushed 3.5
@@ -339,6 +339,11 @@ Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj
   auto& P = m.positions;
   std::vector<Index> seen(m.n_faces(), kNone), region, in_try(m.n_vertices(), kNone), newly_held;
   std::vector<Index> row(m.n_vertices(), kNone);  // move_to_neighbour_means()' unknowns
+  // Per patch, the move of its first try that laid it flat but went past max_move, after
+  // which it is not tried again: a coarse mesh's sharp tip, cut off, moved vertices by up
+  // to 32% of the diagonal, and tried with more rings, it was still cut off, more gently
+  // (bench/RESULTS.md).
+  std::vector<double> too_far(patches, std::numeric_limits<double>::infinity());
   Index visit = 0, tries = 0;  // mark `seen` per region and `in_try` per try
   std::vector<Vec3> before;
   bool met = false;  // whether the last try's rings met vertices another patch holds
@@ -354,6 +359,7 @@ Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj
   // Lays patch p flat, ring by ring. `strict`: only a region left with no defect counts;
   // else (a last pass) one left with fewer defects than it had, whose patch itself is flat.
   const auto lay_flat = [&](Index p, bool strict) {
+    if (std::isfinite(too_far[p])) return false;
     std::vector<Index>& vs = to_move[p];
     const Index own = Index(vs.size()), try_id = tries++;
     for (Index v : vs) in_try[v] = try_id;
@@ -417,12 +423,17 @@ Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj
         defects_after += d;
       }
       if (flat && (strict || defects_after < defects_before)) {
-        ++done.patches, done.vertices += Index(vs.size());
-        for (std::size_t i = 0; i < vs.size(); ++i)
-          done.farthest = std::max(done.farthest, (P[vs[i]] - before[i]).norm());
-        return true;
+        double farthest = 0;
+        for (std::size_t i = 0; i < vs.size(); ++i) farthest = std::max(farthest, (P[vs[i]] - before[i]).norm());
+        if (farthest <= max_move) {
+          ++done.patches, done.vertices += Index(vs.size());
+          done.farthest = std::max(done.farthest, farthest);
+          return true;
+        }
+        too_far[p] = farthest;
       }
       for (std::size_t i = 0; i < vs.size(); ++i) P[vs[i]] = before[i];
+      if (std::isfinite(too_far[p])) break;
     }
     for (Index v : newly_held) held[v] = kNone;  // free for the patches after it
     vs.resize(own);
@@ -446,6 +457,8 @@ Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj
   // patches no strict try laid flat come here, so inputs without such leave as they were.
   std::sort(left.begin(), left.end());
   for (Index p : left) lay_flat(p, false);
+  for (Index p = 0; p < patches; ++p)
+    if (std::isfinite(too_far[p])) done.least_kept = done.kept++ ? std::min(done.least_kept, too_far[p]) : too_far[p];
   return done;
 }
 

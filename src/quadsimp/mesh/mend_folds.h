@@ -19,14 +19,17 @@ Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj, std
 //! What unfold_patches() laid flat.
 struct Unfolded {
   Index patches = 0;
-  Index vertices = 0;   //!< moved
-  double farthest = 0;  //!< the longest move
+  Index vertices = 0;     //!< moved
+  double farthest = 0;    //!< the longest move
+  Index kept = 0;         //!< patches left because laying them flat moved a vertex past max_move
+  double least_kept = 0;  //!< the least of those moves
 };
 
 //! Lays flat the small patches folded back onto the surface (folded_patches() with
 //! kLaidFlatShare and kLaidFlatCos) that are discs, and if `only_at` is set have a vertex
-//! at one of its points, by moving their vertices and if need be the rings around them.
+//! at one of its points, by moving their vertices and if need be the rings around them,
+//! none further than `max_move`.
 Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                        const std::optional<std::vector<Vec3>>& only_at);
+                        const std::optional<std::vector<Vec3>>& only_at, double max_move);
 
 }  // namespace qs::detail
