@@ -683,6 +683,15 @@ TEST(Clean, lays_flat_only_the_folds_it_is_asked_to) {
     if (x > 32) EXPECT_EQ(t.positions[v], folded.positions[v]) << v;
     else EXPECT_NEAR((t.positions[v] - grid.positions[v]).norm(), 0, 1e-6 / n) << v;
   }
+  // A point 1e-6 off, closer than border vertices are merged (1e-6 of the diagonal; a
+  // quad's corner at the copy merged away) still asks for its fold: compared exactly, it
+  // missed it. One 1e-3 off does not.
+  for (const double off : {1e-6, 1e-3}) {
+    SCOPED_TRACE(off);
+    t = folded;
+    options.folds_only_at = std::vector<Vec3>{folded.positions[32 * (n + 1) + 16] + Vec3(off, 0, 0)};
+    EXPECT_EQ(clean(t, "mesh", {}, options).unfolded_patches, off < 1e-5 ? 1u : 0u);
+  }
   t = folded;
   options.folds_only_at.emplace();  // at no point
   const CleanReport none = clean(t, "mesh", {}, options);

@@ -544,8 +544,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, const Cl
   std::vector<Vec3> normals = unit_normals(m);  // for both mends
   r.flipped_edges = mend_by_edge_flips(m, adj, normals);
   if (!options.folds_only_at || !options.folds_only_at->empty()) {
-    const detail::Unfolded u =
-        unfold_patches(m, adj, normals, options.folds_only_at, options.longest_fold_move * diagonal);
+    const detail::Unfolded u = unfold_patches(m, adj, normals, options, diagonal);
     r.unfolded_patches = u.patches, r.moved_vertices = u.vertices, r.farthest_move = u.farthest;
     r.kept_far_folds = u.kept, r.least_kept_move = u.least_kept;
   }

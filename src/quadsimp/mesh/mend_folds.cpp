@@ -288,29 +288,33 @@ std::vector<char> patches_that_are_discs(const TriMesh& m, const std::vector<Ind
   return disc;
 }
 
-// Keeps `tried` only for the patches with a vertex at one of `points`. Cleaning moves no
-// vertex before the patches are laid flat and keeps one of the vertices it merges, so the
-// points are compared exactly (only a border vertex merged with another 1e-6 of the
-// diagonal away can be missed).
+// Keeps `tried` only for the patches with a vertex within `near` of one of `points`.
+// Cleaning moves no vertex before the patches are laid flat, but merges border vertices
+// closer than 1e-6 of the diagonal into one of them: compared exactly, a point given at
+// the copy merged away missed its patch.
 void only_patches_at(const TriMesh& m, const std::vector<Index>& patch, const std::vector<Vec3>& points,
-                     std::vector<char>& tried) {
-  const auto before = [](const Vec3& a, const Vec3& b) {
-    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-  };
+                     double near, std::vector<char>& tried) {
   std::vector<Vec3> sorted = points;
-  std::sort(sorted.begin(), sorted.end(), before);
+  std::sort(sorted.begin(), sorted.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x(); });
+  const auto is_near = [&](const Vec3& y) {
+    auto i = std::lower_bound(sorted.begin(), sorted.end(), y.x() - near,
+                              [](const Vec3& a, double x) { return a.x() < x; });
+    for (; i != sorted.end() && i->x() <= y.x() + near; ++i)
+      if ((*i - y).squaredNorm() <= near * near) return true;
+    return false;
+  };
   std::vector<char> at(tried.size(), 0);
   for (Index f = 0; f < m.n_faces(); ++f)
     if (const Index p = patch[f]; p != kNone && !at[p])
-      for (Index v : m.faces[f])
-        at[p] = at[p] || std::binary_search(sorted.begin(), sorted.end(), m.positions[v], before);
+      for (Index v : m.faces[f]) at[p] = at[p] || is_near(m.positions[v]);
   for (std::size_t p = 0; p < tried.size(); ++p) tried[p] = tried[p] && at[p];
 }
 
 }  // namespace
 
 Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                        const std::optional<std::vector<Vec3>>& only_at, double max_move) {
+                        const CleanOptions& options, double diagonal) {
+  const double max_move = options.longest_fold_move * diagonal;
   std::vector<Index> patch;
   // A sheet's two sides are about half of it each. 1e-4 missed five vertices of a
   // 128 x 128 grid pushed past their neighbours, 1e-3 a column of twelve pushed 3.5
@@ -440,7 +444,8 @@ Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj
     return false;
   };
   std::vector<char> tried = patches_that_are_discs(m, patch, patches);
-  if (only_at) only_patches_at(m, patch, *only_at, tried);
+  // Ten times the distance of the merges, far below any mesh's spacing.
+  if (options.folds_only_at) only_patches_at(m, patch, *options.folds_only_at, 1e-5 * diagonal, tried);
   // A patch whose rings met another patch's vertices is tried again at the end, once every
   // patch has moved: whether two folds a few triangles apart both lay flat depended on
   // which came first. Letting the second try take the vertices of patches laid flat was

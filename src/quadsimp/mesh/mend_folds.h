@@ -4,9 +4,9 @@
 // Internal to clean(): the repairs of caps and of triangles folded back onto the surface.
 
 #include <array>
-#include <optional>
 #include <vector>
 
+#include "quadsimp/mesh/clean.h"
 #include "quadsimp/mesh/tri_mesh.h"
 
 namespace qs::detail {
@@ -26,10 +26,10 @@ struct Unfolded {
 };
 
 //! Lays flat the small patches folded back onto the surface (folded_patches() with
-//! kLaidFlatShare and kLaidFlatCos) that are discs, and if `only_at` is set have a vertex
-//! at one of its points, by moving their vertices and if need be the rings around them,
-//! none further than `max_move`.
+//! kLaidFlatShare and kLaidFlatCos) that are discs and that `options` asks for, by moving
+//! their vertices and if need be the rings around them. `diagonal`: the mesh's bounding
+//! box's, which CleanOptions' shares are of.
 Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                        const std::optional<std::vector<Vec3>>& only_at, double max_move);
+                        const CleanOptions& options, double diagonal);
 
 }  // namespace qs::detail
