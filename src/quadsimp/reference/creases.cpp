@@ -30,9 +30,12 @@ std::vector<Vec3> filtered_normals(const TriMesh& mesh, const std::vector<std::a
                                    double angle_deg) {
   constexpr int kPasses = 8;
   const double spread = 2 * std::sin(angle_deg * M_PI / 360.0) / 3;  // the distance between normals
-  std::vector<Vec3> normal = unit_normals(mesh), next(normal.size());
+  std::vector<Vec3> normal(mesh.n_faces()), next(mesh.n_faces());
   std::vector<double> area(mesh.n_faces());
-  for (Index f = 0; f < mesh.n_faces(); ++f) area[f] = 0.5 * mesh.area_normal(mesh.faces[f]).norm();
+  for (Index f = 0; f < mesh.n_faces(); ++f) {
+    const Vec3 n = mesh.area_normal(mesh.faces[f]);
+    normal[f] = n.normalized(), area[f] = 0.5 * n.norm();
+  }
   for (int pass = 0; pass < kPasses; ++pass) {
     parallel_for_as_here(tbb::blocked_range<Index>(0, mesh.n_faces()), [&](const tbb::blocked_range<Index>& faces) {
       for (Index f = faces.begin(); f != faces.end(); ++f) {
