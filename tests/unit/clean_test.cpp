@@ -660,6 +660,10 @@ TEST(Clean, leaves_a_fold_whose_laying_flat_would_move_vertices_far) {
   EXPECT_EQ(laid.kept_far_folds, 0u);
   EXPECT_DOUBLE_EQ(laid.farthest_move, kept.least_kept_move);
   EXPECT_EQ(faces_facing_down(t), 0u);
+  for (const double bad : {-0.01, std::numeric_limits<double>::quiet_NaN()}) {
+    further.longest_fold_move = bad;
+    EXPECT_THROW(clean(t, "in", {}, further), std::invalid_argument);
+  }
 }
 
 TEST(Clean, lays_flat_only_the_folds_it_is_asked_to) {

@@ -9,6 +9,7 @@
 #include <map>
 #include <numeric>
 #include <set>
+#include <stdexcept>
 #include <utility>
 
 #include "quadsimp/mesh/mend_folds.h"
@@ -501,6 +502,8 @@ std::string kept_note(const CleanReport& r, double diagonal) {
 }  // namespace
 
 CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, const CleanOptions& options) {
+  if (!(options.longest_fold_move >= 0))
+    throw std::invalid_argument("clean: longest_fold_move must be a share of the diagonal, at least 0");
   CleanReport r;
   if (m.positions.empty()) throw InvalidInput(src + ": the mesh is empty (no vertices)");
   if (m.faces.empty())

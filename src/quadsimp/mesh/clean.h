@@ -68,6 +68,7 @@ struct CleanOptions {
 //! region faces the way the patch's own surroundings do (not those on the border). Only patches that are discs
 //! are tried: a band round a post with an overhanging wall stays. `options` can keep
 //! some or all such patches as they are (CleanOptions).
+//! \throw std::invalid_argument if options.longest_fold_move is negative or NaN.
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
 //!        out-of-range indices, a size outside 1e-30 to 1e30 across (the faces' bounding
 //!        box), a non-orientable component. `what` is one sentence;
