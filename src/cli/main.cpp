@@ -133,8 +133,8 @@ int main(int argc, char** argv) {
               "keep the border exactly as it is (else border vertices slide along it, and move inwards by about "
               "one input edge at most where a ragged outline leaves a border edge over nothing)");
   s->add_flag("--keep-tips", simp.params.keep_tips,
-              "hold a vertex at each tip of the input (claws, a nose) that the smoothing would otherwise cut back "
-              "(ours; quads capping a tip narrower than themselves count as folded)");
+              "hold a vertex at each tip of the input (claws, a nose) that the smoothing would otherwise cut back, "
+              "and refuse to fold quads round thin parts in uniform mode too (ours)");
   add_crease_angle(s, simp.params.crease_angle, "keep the input's edges sharper than this as edges of the quads");
   s->add_flag("--fast", simp.params.fast,
               "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");

@@ -27,7 +27,7 @@ struct SimplifyParams {
   double max_aspect = 3.0;       //!< adaptive: see SimplifyOptions::max_aspect (1: square quads)
   double reach = 0.045;          //!< adaptive: see SimplifyOptions::reach (0: no check)
   bool preserve_boundary = false;
-  bool keep_tips = false;        //!< see SimplifyOptions::keep_tips
+  bool keep_tips = false;        //!< see SimplifyOptions::keep_tips; refuses folds too (simplify_options())
   //! Keep the input's edges sharper than this (degrees; 0: none) as chains of the quads'
   //! edges: the conversion pairs no triangles across them (convert_options()) and the
   //! simplifier keeps them (SimplifyOptions::creases).

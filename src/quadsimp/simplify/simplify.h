@@ -120,11 +120,11 @@ struct SimplifyOptions {
   //! leaves it where it is and a collapse merging it stays there. Ours, off by default.
   //! The smoothing otherwise slides the vertices near a tip narrower than its springs
   //! back along it: the armadillo in uniform mode at 2,000 quads keeps its claws with
-  //! RMS 1.85e-3 instead of 2.40e-3, pyvista's airplane at automatic halting its nose
+  //! RMS 1.83e-3 instead of 2.40e-3 (folds refused), pyvista's airplane at automatic halting its nose
   //! with RMS 3.5e-3 instead of 19.8e-3. The quads capping a tip narrower than
-  //! themselves are folded, and count so; a coarse input with many small tips (the
-  //! cow's hooves and teats at 500 quads) can come out further (bench/RESULTS.md,
-  //! "Tips kept").
+  //! themselves fold unless refuse_folds is on (the pipeline turns it on with this); a
+  //! coarse input with many small tips (the cow's hooves and teats at 500 quads) can come
+  //! out further (bench/RESULTS.md, "Tips kept").
   bool keep_tips = false;
   //! Keep these creases of the reference surface (reference/creases.h; null or empty:
   //! none), ours: the paper keeps no feature, and its smoothing rounds sharp edges off.
@@ -166,7 +166,8 @@ struct SimplifyOptions {
   //! armadillo: 34 folded quads, 13 in the uniform mesh of the same count; with the
   //! check none on five models, and the RMS gain over uniform within 1.5 points of
   //! what it was). In uniform mode it moved two Table 1 rows out of the homeometry bounds
-  //! (bench/RESULTS.md), so it stays off there for now.
+  //! and cut ears off coarse inputs (bench/RESULTS.md), so the pipeline turns it on there
+  //! only with keep_tips.
   bool refuse_folds = false;
   //! Without refuse_folds: once the target is reached, rotate an edge of each folded
   //! quad where that leaves neither of the two new quads folded, or else move one of its
