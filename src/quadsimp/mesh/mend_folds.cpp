@@ -312,8 +312,8 @@ void only_patches_at(const TriMesh& m, const std::vector<Index>& patch, const st
 
 }  // namespace
 
-Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                        const CleanOptions& options, double diagonal) {
+void unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
+                    const CleanOptions& options, double diagonal, CleanReport& report) {
   const double max_move = options.longest_fold_move * diagonal;
   std::vector<Index> patch;
   // A sheet's two sides are about half of it each. 1e-4 missed five vertices of a
@@ -323,8 +323,7 @@ Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj
   // a stalk, is a patch too, but laid flat it still faces against its surroundings, and
   // the check below puts it back.
   Index patches = folded_patches(m, adj, normals, patch, kLaidFlatShare, kLaidFlatCos);
-  Unfolded done;
-  if (patches == 0) return done;
+  if (patches == 0) return;
   const CornersAround around = corners_around(m);
   std::vector<char> border(m.n_vertices(), 0);
   for (Index f = 0; f < m.n_faces(); ++f)
@@ -430,8 +429,8 @@ Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj
         double farthest = 0;
         for (std::size_t i = 0; i < vs.size(); ++i) farthest = std::max(farthest, (P[vs[i]] - before[i]).norm());
         if (farthest <= max_move) {
-          ++done.patches, done.vertices += Index(vs.size());
-          done.farthest = std::max(done.farthest, farthest);
+          ++report.unfolded_patches, report.moved_vertices += Index(vs.size());
+          report.farthest_move = std::max(report.farthest_move, farthest);
           return true;
         }
         too_far[p] = farthest;
@@ -463,8 +462,8 @@ Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj
   std::sort(left.begin(), left.end());
   for (Index p : left) lay_flat(p, false);
   for (Index p = 0; p < patches; ++p)
-    if (std::isfinite(too_far[p])) done.least_kept = done.kept++ ? std::min(done.least_kept, too_far[p]) : too_far[p];
-  return done;
+    if (std::isfinite(too_far[p]))
+      report.least_kept_move = report.kept_far_folds++ ? std::min(report.least_kept_move, too_far[p]) : too_far[p];
 }
 
 }  // namespace qs::detail

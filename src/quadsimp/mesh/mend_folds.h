@@ -16,20 +16,12 @@ namespace qs::detail {
 //! it) and `normals` (the faces' unit normals) are kept up to date.
 Index mend_by_edge_flips(TriMesh& m, std::vector<std::array<Index, 3>>& adj, std::vector<Vec3>& normals);
 
-//! What unfold_patches() laid flat.
-struct Unfolded {
-  Index patches = 0;
-  Index vertices = 0;     //!< moved
-  double farthest = 0;    //!< the longest move
-  Index kept = 0;         //!< patches left because laying them flat moved a vertex past max_move
-  double least_kept = 0;  //!< the least of those moves
-};
-
 //! Lays flat the small patches folded back onto the surface (folded_patches() with
 //! kLaidFlatShare and kLaidFlatCos) that are discs and that `options` asks for, by moving
-//! their vertices and if need be the rings around them. `diagonal`: the mesh's bounding
-//! box's, which CleanOptions' shares are of.
-Unfolded unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
-                        const CleanOptions& options, double diagonal);
+//! their vertices and if need be the rings around them; counts them, and those left for
+//! CleanOptions::longest_fold_move, in `report`. `diagonal`: the mesh's bounding box's,
+//! which CleanOptions' shares are of.
+void unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
+                    const CleanOptions& options, double diagonal, CleanReport& report);
 
 }  // namespace qs::detail

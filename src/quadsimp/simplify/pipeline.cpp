@@ -48,15 +48,16 @@ SimplifyOptions simplify_options(const SimplifyParams& p, const Fitmaps* fitmaps
   opt.target_faces = p.target_faces;
   opt.preserve_boundary = p.preserve_boundary;
   opt.keep_tips = p.keep_tips;
-  // A kept tip's cap folds where it is narrower than the quads, and the unfolding after
-  // the loop cannot flatten it round a held vertex: uniform mode at the twelve fixed
-  // counts kept 20 folded quads with the tips held, 10 without. Refused throughout, none,
-  // and the RMS 1.7% lower still (bench/RESULTS.md, "Tips kept with folds refused").
-  opt.refuse_folds = p.keep_tips;
+  // Folds refused: adaptive mode's small faces gather on thin parts (SimplifyOptions::
+  // refuse_folds), and a kept tip's cap folds where it is narrower than the quads, which
+  // the unfolding after the loop cannot flatten round a held vertex: uniform mode at the
+  // twelve fixed counts kept 20 folded quads with the tips held, 10 without. Refused
+  // throughout, none, and the RMS 1.7% lower still (bench/RESULTS.md, "Tips kept with
+  // folds refused").
+  opt.refuse_folds = p.adaptive || p.keep_tips;
   opt.passes = p.fast ? 1 : 2;
   if (p.adaptive) {
     opt.adaptive = true;
-    opt.refuse_folds = true;
     opt.fitmaps = fitmaps;
     opt.m_factor = p.m_factor;
     opt.m_slack = p.m_slack;
