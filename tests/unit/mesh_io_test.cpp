@@ -248,7 +248,10 @@ TEST_F(MeshIo, face_colours_round_trip_every_output_format) {
 }
 
 // OBJ's face colours are its materials' diffuse colours (Kd; d as alpha, or Tr as 1 -
-// alpha), from the material files it names, kept only if every face has one.
+// alpha), from the material files it names, as MeshLab reads them (checked with
+// pymeshlab 2025.7): a face before any material is light grey, one after a material no
+// file defines keeps the colour before it, one with a material without Kd is white.
+// Kept if some face has a material's Kd and no face is textured.
 TEST_F(MeshIo, obj_face_colours_come_from_its_materials) {
   write("a.mtl", "newmtl red one\nKd 1 0 0\nd 0.5\nnewmtl textured\nKd 1 1 1\nmap_Kd t.png\n");
   write("b.mtl", "# another file\nnewmtl blue\nKa 0 0 0\nKd 0 0 1\nTr 0.25\n");  // as MeshLab writes alpha
@@ -257,14 +260,21 @@ TEST_F(MeshIo, obj_face_colours_come_from_its_materials) {
                                                   "usemtl red one\nf 1 2 3 4\nusemtl blue\nf 2 5 3\n"));
   EXPECT_EQ(f.quad_colours, (std::vector<Colour>{{255, 0, 0, 128}}));
   EXPECT_EQ(f.triangle_colours, (std::vector<Colour>{{0, 0, 255, 191}}));
-  // A face without a material, with a textured one, with one no file names, or a material
-  // file missing: no face colours.
-  for (const char* faces : {"f 1 2 3 4\nusemtl blue\nf 2 5 3\n", "usemtl textured\nf 1 2 3 4\n",
-                            "usemtl green\nf 1 2 3 4\n"}) {
+  const Colour grey{192, 192, 192, 255}, blue{0, 0, 255, 191}, white{255, 255, 255, 255};
+  write("c.mtl", "newmtl blue\nKd 0 0 1\nTr 0.25\nnewmtl plain\nNs 10\nnewmtl see-through\nd 0.5\nKd 0 1 0\n");
+  const MeshFile g = read_mesh(write("g.obj", "mtllib c.mtl\n" + v +
+                                                  "f 1 2 3\nusemtl blue\nf 1 3 4\nusemtl green\nf 2 5 3\n"
+                                                  "usemtl plain\nf 1 5 2\nusemtl see-through\nf 3 5 4\n"));
+  EXPECT_EQ(g.triangle_colours, (std::vector<Colour>{grey, blue, blue, white, {0, 255, 0, 128}}));
+  // A face with a textured material, or no Kd anywhere (a material that no file names,
+  // a material file missing, a material without one): no face colours.
+  for (const char* faces : {"usemtl blue\nf 2 5 3\nusemtl textured\nf 1 2 3 4\n", "usemtl green\nf 1 2 3 4\n",
+                            "f 1 2 3 4\n"}) {
     SCOPED_TRACE(faces);
     EXPECT_FALSE(read_mesh(write("n.obj", "mtllib a.mtl b.mtl\n" + v + faces)).has_face_colours());
   }
   EXPECT_FALSE(read_mesh(write("n.obj", "mtllib none.mtl\n" + v + "usemtl blue\nf 1 2 3 4\n")).has_face_colours());
+  EXPECT_FALSE(read_mesh(write("n.obj", "mtllib c.mtl\n" + v + "usemtl plain\nf 1 2 3 4\n")).has_face_colours());
 }
 
 // OBJ's texture: its faces' corners' coordinates ("v/vt", "v/vt/vn", counted back from -1

@@ -18,8 +18,9 @@ namespace qs {
 //! faux-edge face flags (PLY saved with per-face flags); other polygons as triangles.
 //! Vertex colours come back too (MeshFile::colours): PLY's, COFF's, and OBJ's
 //! `v x y z r g b` (MeshLab's extension), where every vertex has one; and face colours
-//! (MeshFile::triangle_colours and quad_colours): PLY's, OFF's, and OBJ's materials'
-//! diffuse colours, where every face has one; and OBJ's and PLY's texture
+//! (MeshFile::triangle_colours and quad_colours): PLY's and OFF's where every face has
+//! one, and OBJ's materials' diffuse colours where some face has one, with MeshLab's
+//! colours for faces without (read_obj.cpp); and OBJ's and PLY's texture
 //! (MeshFile::texture), where every face has coordinates into an image.
 //! \throw InvalidInput "PATH: reason" for unreadable, truncated or unknown files.
 MeshFile read_mesh(const std::string& path);

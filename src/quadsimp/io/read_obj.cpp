@@ -25,11 +25,15 @@ std::string name_on(const detail::TextLines& line) {
   return name;
 }
 
-// An .mtl file's material: its diffuse colour (Kd, with d as alpha, or Tr as 1 - alpha:
-// MeshLab writes Tr), or its diffuse texture (map_Kd), whose image then colours its faces.
+// An .mtl file's material: its diffuse colour (Kd, white without one, as MeshLab takes
+// it; d as alpha, or Tr as 1 - alpha: MeshLab writes Tr), or its diffuse texture (map_Kd),
+// whose image then colours its faces.
 struct Material {
-  std::optional<Colour> colour;
-  std::string image;  // a path readable from here, or none
+  Colour colour{255, 255, 255, 255};
+  bool diffuse = false;  // Kd given
+  std::string image;     // a path readable from here, or none
+  //! The colour its faces take: none where the texture colours them.
+  std::optional<Colour> face_colour() const { return image.empty() ? std::optional<Colour>(colour) : std::nullopt; }
 };
 
 // map_Kd's image: the rest of the line, which may hold spaces, if that names a file; else
@@ -52,9 +56,7 @@ void read_materials(const std::string& path, std::unordered_map<std::string, Mat
   std::string name;
   Material material;
   const auto keep = [&] {
-    if (name.empty()) return;
-    if (!material.image.empty()) material.colour.reset();  // its faces' colours are the texture's
-    materials[name] = material;
+    if (!name.empty()) materials[name] = material;
   };
   while (in.next()) {
     const std::string_view kw = in[0];
@@ -63,12 +65,10 @@ void read_materials(const std::string& path, std::unordered_map<std::string, Mat
       name = name_on(in), material = Material();
     } else if (kw == "Kd") {
       Colour c;
-      const std::uint8_t alpha = material.colour ? (*material.colour)[3] : 255;
-      material.colour = in.colour(1, true, c) ? std::optional<Colour>(c) : std::nullopt;
-      if (material.colour) (*material.colour)[3] = alpha;
-    } else if ((kw == "d" || kw == "Tr") && in.size() == 2 && material.colour) {
+      if ((material.diffuse = in.colour(1, true, c))) std::copy_n(c.begin(), 3, material.colour.begin());
+    } else if ((kw == "d" || kw == "Tr") && in.size() == 2) {
       double x;
-      if (parse_number(in[1], x)) (*material.colour)[3] = colour_byte(255 * (kw == "d" ? x : 1 - x));
+      if (parse_number(in[1], x)) material.colour[3] = colour_byte(255 * (kw == "d" ? x : 1 - x));
     } else if (kw == "map_Kd" && in.size() > 1) {
       material.image = image_on(in, folder);
     }
@@ -90,6 +90,9 @@ bool texture_corner(std::string_view corner, std::size_t n, std::size_t& index) 
   return true;
 }
 
+// What MeshLab (vcglib's OBJ reader) gives a face before any material.
+constexpr Colour kMeshLabGrey{192, 192, 192, 255};
+
 }  // namespace
 
 MeshFile read_obj(const std::string& path) {
@@ -101,11 +104,16 @@ MeshFile read_obj(const std::string& path) {
   bool coloured = true;
   std::vector<std::array<Index, 3>> triangles;
   std::vector<std::uint8_t> faux;
-  // Face colours from the materials' diffuse colours; kept only if every face has one.
+  // Face colours from the materials' diffuse colours, as MeshLab reads them: a face before
+  // any material takes its light grey, and one after a material no file defines the colour
+  // before it. Kept if some face has a material's colour and every face has a colour (a
+  // textured material's faces have none: the texture colours them). Dropping them all
+  // where some faces had no material lost a model's colours with no word said.
   std::unordered_map<std::string, Material> materials;
   const Material* material = nullptr;
+  std::optional<Colour> colour = kMeshLabGrey;
   std::vector<Colour> face_colours;
-  bool face_coloured = true;
+  bool face_coloured = true, from_material = false;
   // The texture: kept only if every face has coordinates and a material with an image.
   bool textured = false, texture_whole = true;
   std::vector<TexCoord> coords;
@@ -140,8 +148,8 @@ MeshFile read_obj(const std::string& path) {
       if (qobj && corners.size() != 4) in.fail("a QOBJ quad ('q') with " + std::to_string(corners.size()) + " corners");
       if (corners.size() < 3) continue;  // fewer than three corners: no face
       detail::fan(corners.data(), corners.size(), triangles, faux);
-      if (face_coloured && (face_coloured = material && material->colour))
-        face_colours.resize(triangles.size(), *material->colour);
+      if (face_coloured && (face_coloured = colour.has_value())) face_colours.resize(triangles.size(), *colour);
+      from_material |= material && material->diffuse && colour;
       if (texture_whole && (texture_whole = material && !material->image.empty())) {
         const int image = image_number.emplace(material->image, int(image_number.size())).first->second;
         detail::fan(corners.data(), corner_coords.data(), corners.size(), image, texture);
@@ -162,9 +170,10 @@ MeshFile read_obj(const std::string& path) {
     } else if (kw == "usemtl") {
       const auto it = materials.find(name_on(in));
       material = it != materials.end() ? &it->second : nullptr;
+      if (material) colour = material->face_colour();
     }
   }
-  if (!face_coloured) face_colours.clear();
+  if (!face_coloured || !from_material) face_colours.clear();
   MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, face_colours);
   if (coloured) out.colours = std::move(colours);
   out.texture_coordinates = textured;
