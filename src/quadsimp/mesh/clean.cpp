@@ -546,7 +546,7 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, const Cl
   split_nonmanifold_vertices(m, r);  // faces keep their neighbours
   std::vector<Vec3> normals = unit_normals(m);  // for both mends
   r.flipped_edges = mend_by_edge_flips(m, adj, normals);
-  if (!options.folds_only_at || !options.folds_only_at->empty()) unfold_patches(m, adj, normals, options, diagonal, r);
+  unfold_patches(m, adj, normals, options, diagonal, r);
   remove_unreferenced(m, r);
   // merged copies are not "unreferenced"
   r.removed_unreferenced_vertices -= r.merged_duplicate_vertices + r.merged_close_vertices;

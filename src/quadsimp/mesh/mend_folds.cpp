@@ -314,6 +314,7 @@ void only_patches_at(const TriMesh& m, const std::vector<Index>& patch, const st
 
 void unfold_patches(TriMesh& m, const std::vector<std::array<Index, 3>>& adj, const std::vector<Vec3>& normals,
                     const CleanOptions& options, double diagonal, CleanReport& report) {
+  if (options.folds_only_at && options.folds_only_at->empty()) return;  // asked for none
   const double max_move = options.longest_fold_move * diagonal;
   std::vector<Index> patch;
   // A sheet's two sides are about half of it each. 1e-4 missed five vertices of a
