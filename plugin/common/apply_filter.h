@@ -55,19 +55,20 @@ TextureStore<Load, Store> texture_store(Load load, Store store) {
 }
 
 //! The layer of `m` as the core reads it. Its texture (MeshFile::texture) is kept where
-//! every face has coordinates into a texture that loads, whose images go to `images`; else
-//! none is, and loading logs that it is not carried.
+//! every face has coordinates into a texture that loads, or a face colour (texture_of()),
+//! whose images go to `images`; else none is, and loading logs that it is not carried.
 template <class Model, class Textures>
 MeshFile layer_file(Model* m, Textures& textures, std::vector<Image>& images) {
   MeshFile file = mesh_file_of(m->cm);
   file.texture_coordinates = m->hasDataMask(Model::MM_WEDGTEXCOORD) || m->hasDataMask(Model::MM_VERTTEXCOORD);
   if (!file.texture_coordinates) return file;
   file.texture = texture_of(m->cm, m->hasDataMask(Model::MM_WEDGTEXCOORD),
-                            std::vector<std::string>(m->cm.textures.begin(), m->cm.textures.end()));
+                            std::vector<std::string>(m->cm.textures.begin(), m->cm.textures.end()),
+                            m->hasDataMask(Model::MM_FACECOLOR));
   if (file.texture.empty()) return file;
   images = textures.load(m);
   for (const int i : file.texture.image)
-    if (images[std::size_t(i)].empty()) {
+    if (i >= 0 && images[std::size_t(i)].empty()) {
       file.texture = {};
       break;
     }

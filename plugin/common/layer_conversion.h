@@ -93,12 +93,15 @@ void assign_quads(CMesh& m, const QuadMesh& q) {
 
 //! The texture of a layer: its live faces' corner coordinates (wedge ones if `wedge`,
 //! else the vertices'), into the layer's textures, named by `images` (one per entry of
-//! m.textures). Vertices numbered as mesh_file_of() numbers them. Empty where a face's
-//! texture number names no texture.
+//! m.textures). Vertices numbered as mesh_file_of() numbers them. With `face_colours`, a
+//! face whose texture number is -1 at every corner (MeshLab's reading of an OBJ face whose
+//! material has no image) takes its face colour instead. Empty where some face's texture
+//! number names no texture otherwise, or where none does.
 template <class CMesh>
-FileTexture texture_of(const CMesh& m, bool wedge, std::vector<std::string> images) {
+FileTexture texture_of(const CMesh& m, bool wedge, std::vector<std::string> images, bool face_colours = false) {
   const std::vector<int> id = live_vertex_numbers(m);
   FileTexture t;
+  bool some_textured = false;
   for (const auto& f : m.face) {
     if (f.IsD()) continue;
     std::array<TexCoord, 3> coords;
@@ -107,13 +110,18 @@ FileTexture texture_of(const CMesh& m, bool wedge, std::vector<std::string> imag
       const auto& tc = wedge ? f.cWT(k) : f.cV(k)->cT();
       coords[k] = {float(tc.U()), float(tc.V())};
       if (k == 0) image = tc.N();
-      if (tc.N() != image || image < 0 || std::size_t(image) >= images.size()) return {};
+      const bool coloured = face_colours && image == -1;
+      if (tc.N() != image || (!coloured && (image < 0 || std::size_t(image) >= images.size()))) return {};
     }
     t.triangles.push_back({Index(id[f.cV(0) - &m.vert[0]]), Index(id[f.cV(1) - &m.vert[0]]),
                            Index(id[f.cV(2) - &m.vert[0]])});
     t.coords.push_back(coords);
     t.image.push_back(image);
+    if (face_colours) t.colours.push_back({f.cC()[0], f.cC()[1], f.cC()[2], f.cC()[3]});
+    some_textured |= image >= 0;
   }
+  if (!some_textured) return {};
+  if (std::find(t.image.begin(), t.image.end(), -1) == t.image.end()) t.colours.clear();
   t.images = std::move(images);
   return t;
 }

@@ -343,6 +343,54 @@ TEST_F(Cli, a_texture_reaches_obj_and_ply_quads) {
   EXPECT_FALSE(fs::exists(p("plain_texture.png")));
 }
 
+// An OBJ textured in part (a material with an image on the left half of a grid, one with
+// only a Kd on the right half) keeps both on its quads: the atlas shows the image on the
+// left and the colour on the right.
+TEST_F(Cli, an_obj_textured_in_part_keeps_its_colours_beside_its_texture) {
+  const int n = 10;
+  std::string obj = "mtllib m.mtl\n";
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      obj += "v " + std::to_string(double(i) / n) + " " + std::to_string(double(j) / n) + " 0\nvt 0.5 0.5\n";
+  for (const bool textured : {true, false}) {
+    obj += textured ? "usemtl image\n" : "usemtl red\n";
+    const auto corner = [&](int v) { return " " + std::to_string(v) + (textured ? "/" + std::to_string(v) : ""); };
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int a = j * (n + 1) + i + 1;
+        if ((i < n / 2) == textured)
+          obj += "f" + corner(a) + corner(a + 1) + corner(a + n + 2) + corner(a + n + 1) + "\n";
+      }
+  }
+  const std::string in = write("part.obj", obj);
+  write("m.mtl", "newmtl image\nKd 1 1 1\nmap_Kd blue.png\nnewmtl red\nKd 1 0 0\n");
+  Image blue;
+  blue.width = blue.height = 4;
+  for (int k = 0; k < 16; ++k) blue.rgba.insert(blue.rgba.end(), {0, 0, 255, 255});
+  write_png(p("blue.png"), blue);
+  const CliRun r = run("simplify " + in + " " + p("q.obj") + " --faces 20");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(r.out.find("not carried"), std::string::npos) << r.out;
+  const MeshFile f = read_mesh(p("q.obj"));
+  ASSERT_FALSE(f.texture.empty());
+  const Image baked = read_image(f.texture.images[0]);
+  int left = 0, right = 0;
+  for (std::size_t t = 0; t < f.texture.triangles.size(); ++t) {
+    double x = 0, u = 0, v = 0;
+    for (int k = 0; k < 3; ++k) {
+      x += f.positions[f.texture.triangles[t][std::size_t(k)]].x() / 3;
+      u += f.texture.coords[t][std::size_t(k)][0] / 3, v += f.texture.coords[t][std::size_t(k)][1] / 3;
+    }
+    if (std::abs(x - 0.5) < 0.2) continue;  // quads across the middle hold both
+    const std::size_t row = std::size_t((1 - v) * baked.height), column = std::size_t(u * baked.width);
+    const std::size_t at = 4 * (row * std::size_t(baked.width) + column);
+    const Colour c{baked.rgba[at], baked.rgba[at + 1], baked.rgba[at + 2], baked.rgba[at + 3]};
+    EXPECT_EQ(c, x < 0.5 ? (Colour{0, 0, 255, 255}) : (Colour{255, 0, 0, 255})) << x;
+    ++(x < 0.5 ? left : right);
+  }
+  EXPECT_GT(std::min(left, right), 4);
+}
+
 // Texture coordinates without an image for every face are not carried: the log says so,
 // and names MeshLab's transfer.
 TEST_F(Cli, texture_coordinates_left_behind_are_logged) {

@@ -266,10 +266,16 @@ TEST_F(MeshIo, obj_face_colours_come_from_its_materials) {
                                                   "f 1 2 3\nusemtl blue\nf 1 3 4\nusemtl green\nf 2 5 3\n"
                                                   "usemtl plain\nf 1 5 2\nusemtl see-through\nf 3 5 4\n"));
   EXPECT_EQ(g.triangle_colours, (std::vector<Colour>{grey, blue, blue, white, {0, 255, 0, 128}}));
-  // A face with a textured material, or no Kd anywhere (a material that no file names,
-  // a material file missing, a material without one): no face colours.
-  for (const char* faces : {"usemtl blue\nf 2 5 3\nusemtl textured\nf 1 2 3 4\n", "usemtl green\nf 1 2 3 4\n",
-                            "f 1 2 3 4\n"}) {
+  // A face of a textured material without texture coordinates: its Kd.
+  const MeshFile t = read_mesh(write("t.obj", "mtllib a.mtl b.mtl\n" + v + "usemtl blue\nf 2 5 3\nusemtl textured\n"
+                                                  "f 1 2 3 4\n"));
+  EXPECT_EQ(t.triangle_colours, (std::vector<Colour>{blue}));
+  EXPECT_EQ(t.quad_colours, (std::vector<Colour>{white}));
+  // A textured face (the texture then colours the others: obj_faces_without_...), or no
+  // Kd anywhere (a material that no file names, a material file missing, a material
+  // without one): no face colours.
+  for (const char* faces : {"vt 0 0\nusemtl blue\nf 2 5 3\nusemtl textured\nf 1/1 2/1 3/1 4/1\n",
+                            "usemtl green\nf 1 2 3 4\n", "f 1 2 3 4\n"}) {
     SCOPED_TRACE(faces);
     EXPECT_FALSE(read_mesh(write("n.obj", "mtllib a.mtl b.mtl\n" + v + faces)).has_face_colours());
   }
@@ -295,6 +301,7 @@ TEST_F(MeshIo, obj_textures_are_read_with_their_images) {
   EXPECT_EQ(f.texture.coords[1], (std::array<TexCoord, 3>{TexCoord{0, 0}, TexCoord{1, 1}, TexCoord{0, 1}}));
   EXPECT_EQ(f.texture.coords[2], (std::array<TexCoord, 3>{TexCoord{1, 0}, TexCoord{0.5f, 0.25f}, TexCoord{1, 1}}));
   EXPECT_EQ(f.texture.image, (std::vector<int>{0, 0, 1}));
+  EXPECT_TRUE(f.texture.colours.empty());  // every face textured
   ASSERT_EQ(f.texture.images.size(), 2u);
   EXPECT_EQ(fs::path(f.texture.images[0]), dir_ / "maps/sub/wall.png");
   EXPECT_EQ(fs::path(f.texture.images[1]), dir_ / "maps/my floor.png");
@@ -311,6 +318,29 @@ TEST_F(MeshIo, obj_textures_are_read_with_their_images) {
     EXPECT_TRUE(g.texture_coordinates);
     EXPECT_EQ(g.triangles.size(), 1u);
   }
+}
+
+// An OBJ whose faces are textured in part: the others, without coordinates or without an
+// image, are baked in their colour (face colours' rules: light grey before any material,
+// a material's Kd, white without one). Dropping the texture there lost a model's texture
+// with only a note. The texture's triangles are the mesh's, also before the first
+// textured face.
+TEST_F(MeshIo, obj_faces_without_a_texture_keep_their_colour_beside_it) {
+  write("m.mtl", "newmtl a\nKd 1 1 0\nmap_Kd wall.png\nnewmtl plain\nKd 1 0 0\n");
+  const std::string v = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n";
+  const std::string vt = "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.25\n";
+  const std::string faces = "f 1/1 2/2 3/3\nusemtl a\nf 1/1 3/3 4/4\nf 1 2 5\nusemtl plain\nf 2/2 5/5 3/3\n";
+  const MeshFile f = read_mesh(write("t.obj", v + vt + faces));
+  EXPECT_EQ(f.texture.image, (std::vector<int>{-1, 0, -1, -1}));
+  const Colour grey{192, 192, 192, 255}, yellow{255, 255, 0, 255}, red{255, 0, 0, 255};
+  EXPECT_EQ(f.texture.colours, (std::vector<Colour>{grey, yellow, yellow, red}));
+  EXPECT_EQ(f.texture.triangles, f.triangles);
+  EXPECT_EQ(f.texture.coords[1], (std::array<TexCoord, 3>{TexCoord{0, 0}, TexCoord{1, 1}, TexCoord{0, 1}}));
+  EXPECT_FALSE(f.has_face_colours());  // the texture holds them
+  // Coordinates that are not numbers: no texture; the face colours stay.
+  const MeshFile g = read_mesh(write("g.obj", v + vt + "vt x 1\n" + faces));
+  EXPECT_TRUE(g.texture.empty());
+  EXPECT_EQ(g.triangle_colours, (std::vector<Colour>{grey, yellow, yellow, red}));
 }
 
 // PLY's texture, as MeshLab writes it: "comment TextureFile NAME" lines (relative to the
@@ -334,6 +364,7 @@ TEST_F(MeshIo, ply_textures_are_read_with_their_images) {
   EXPECT_EQ(f.texture.coords[1], (std::array<TexCoord, 3>{TexCoord{0, 0}, TexCoord{1, 1}, TexCoord{0, 1}}));
   EXPECT_EQ(f.texture.coords[2], (std::array<TexCoord, 3>{TexCoord{1, 0}, TexCoord{0.5f, 0.25f}, TexCoord{1, 1}}));
   EXPECT_EQ(f.texture.image, (std::vector<int>{0, 0, 1}));
+  EXPECT_TRUE(f.texture.colours.empty());  // every face textured
   EXPECT_EQ(f.texture.images, (std::vector<std::string>{path("wall.png"), path("maps/my floor.png")}));
   const MeshFile v = read_mesh(write("v.ply", header("comment TextureFile wall.png\n",
                                                     "property float texture_u\nproperty float texture_v\n", "") +

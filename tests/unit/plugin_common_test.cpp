@@ -153,6 +153,32 @@ TYPED_TEST(PluginLayer, texture_coordinates_follow_the_quads_corners) {
       EXPECT_EQ(per_vertex.coords[i][std::size_t(k)], (TexCoord{float(per_vertex.triangles[i][std::size_t(k)]), 0.5f}));
 }
 
+// With face colours asked for, a face whose texture number is -1 at every corner takes
+// its face colour (image -1) beside the textured ones; without them, or where no face
+// is textured, the layer has no texture.
+TYPED_TEST(PluginLayer, faces_without_a_texture_take_their_colour) {
+  const QuadMesh q = quad_grid(2, 1);
+  Layer<TypeParam> layer;
+  assign_quads(layer, q);
+  layer.face.EnableWedgeTexCoord();
+  layer.face.EnableColor();
+  for (std::size_t f = 0; f < layer.face.size(); ++f) {
+    layer.face[f].C() = f < 2 ? vcg::Color4b(255, 255, 255, 255) : vcg::Color4b(200, 10, 20, 128);
+    for (int k = 0; k < 3; ++k) layer.face[f].WT(k).N() = f < 2 ? 0 : -1;
+  }
+  const FileTexture t = texture_of(layer, true, {"atlas"}, true);
+  EXPECT_EQ(t.image, (std::vector<int>{0, 0, -1, -1}));
+  ASSERT_EQ(t.colours.size(), 4u);
+  EXPECT_EQ(t.colours[2], (Colour{200, 10, 20, 128}));
+  EXPECT_TRUE(texture_of(layer, true, {"atlas"}).empty());
+  for (std::size_t f = 0; f < 2; ++f)
+    for (int k = 0; k < 3; ++k) layer.face[f].WT(k).N() = -1;
+  EXPECT_TRUE(texture_of(layer, true, {"atlas"}, true).empty());
+  for (int k = 0; k < 3; ++k) layer.face[0].WT(k).N() = 0;
+  layer.face[3].WT(1).N() = 0;  // one triangle, a texture and none
+  EXPECT_TRUE(texture_of(layer, true, {"atlas"}, true).empty());
+}
+
 TYPED_TEST(PluginLayer, deleted_vertices_and_faces_are_left_out) {
   const QuadMesh q = quad_grid(3, 3);
   Layer<TypeParam> layer;

@@ -258,3 +258,49 @@ TEST(TextureBake, tiles_follow_the_quads_sizes) {
   EXPECT_LE(std::max(t.image.width, t.image.height), 60);
   EXPECT_NEAR(double(inner_width(t, 1)) / double(inner_width(t, 0)), 2.0, 0.25);
 }
+
+// Triangles without an image (an OBJ's faces whose material has only a colour, beside
+// textured ones) are baked in their colour, alpha included; the tiles' texel density is
+// the textured part's alone.
+TEST(TextureBake, faces_without_an_image_are_baked_in_their_colour) {
+  TriMesh plane = tri_grid(6, 4);  // [0, 3] x [0, 2]
+  for (Vec3& p : plane.positions) p = Vec3(3 * p.x(), 2 * p.y(), 0);
+  const Colour green{10, 200, 30, 255}, red{250, 0, 0, 128};
+  FileTexture tex;
+  tex.images = {"a"};
+  for (const auto& f : plane.faces) {
+    double cx = 0;
+    for (Index v : f) cx += plane.positions[v].x() / 3;
+    std::array<TexCoord, 3> uv{};
+    if (cx < 1)
+      for (int k = 0; k < 3; ++k) uv[k] = {float(plane.positions[f[k]].x()), float(plane.positions[f[k]].y() / 2)};
+    tex.triangles.push_back(f);
+    tex.coords.push_back(uv);
+    tex.image.push_back(cx < 1 ? 0 : -1);
+    tex.colours.push_back(cx < 2 ? green : red);
+  }
+  // Three unit squares along x, 0.01 above the plane.
+  std::vector<Vec3> p;
+  std::vector<std::array<Index, 4>> faces;
+  for (int i = 0; i < 3; ++i) {
+    for (const auto& [x, y] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) p.emplace_back(i + x, y, 0.01);
+    faces.push_back({Index(4 * i), Index(4 * i + 1), Index(4 * i + 2), Index(4 * i + 3)});
+  }
+  const QuadMesh quads = QuadMesh::from_faces(p, faces);
+  const QuadTexture t = bake_texture(plane.positions, tex, {gradient(128, 0)}, quads);
+  // The image spends 128^2 texels on the textured area of 2: 128 / sqrt(2) along a unit.
+  const float inner = (t.corners[0][1][0] - t.corners[0][0][0]) * float(t.image.width);
+  EXPECT_NEAR(inner, 128 / std::sqrt(2.0), 1);
+  for (double s = 0.05; s < 1; s += 0.1)
+    for (double u = 0.05; u < 1; u += 0.1) {
+      SCOPED_TRACE(testing::Message() << s << ", " << u);
+      const std::uint8_t* c = texel(t, in_tile(t, 0, s, u));
+      EXPECT_NEAR(c[0], 128 * s, 2);  // the gradient: x along the quad
+      EXPECT_EQ(c[2], 0);
+      const std::uint8_t *g = texel(t, in_tile(t, 1, s, u)), *r = texel(t, in_tile(t, 2, s, u));
+      EXPECT_EQ(Colour({g[0], g[1], g[2], g[3]}), green);
+      EXPECT_EQ(Colour({r[0], r[1], r[2], r[3]}), red);
+    }
+  tex.colours.clear();
+  EXPECT_THROW(bake_texture(plane.positions, tex, {gradient(128, 0)}, quads), std::invalid_argument);
+}

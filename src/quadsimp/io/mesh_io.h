@@ -21,7 +21,8 @@ namespace qs {
 //! (MeshFile::triangle_colours and quad_colours): PLY's and OFF's where every face has
 //! one, and OBJ's materials' diffuse colours where some face has one, with MeshLab's
 //! colours for faces without (read_obj.cpp); and OBJ's and PLY's texture
-//! (MeshFile::texture), where every face has coordinates into an image.
+//! (MeshFile::texture), where every face has coordinates into an image, or in an OBJ
+//! where some face has and the others take their colour (FileTexture::colours).
 //! \throw InvalidInput "PATH: reason" for unreadable, truncated or unknown files.
 MeshFile read_mesh(const std::string& path);
 

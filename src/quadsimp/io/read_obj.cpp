@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
-#include <optional>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
@@ -26,14 +25,12 @@ std::string name_on(const detail::TextLines& line) {
 }
 
 // An .mtl file's material: its diffuse colour (Kd, white without one, as MeshLab takes
-// it; d as alpha, or Tr as 1 - alpha: MeshLab writes Tr), or its diffuse texture (map_Kd),
-// whose image then colours its faces.
+// it; d as alpha, or Tr as 1 - alpha: MeshLab writes Tr), and its diffuse texture (map_Kd),
+// whose image colours its faces that have texture coordinates.
 struct Material {
   Colour colour{255, 255, 255, 255};
   bool diffuse = false;  // Kd given
   std::string image;     // a path readable from here, or none
-  //! The colour its faces take: none where the texture colours them.
-  std::optional<Colour> face_colour() const { return image.empty() ? std::optional<Colour>(colour) : std::nullopt; }
 };
 
 // map_Kd's image: the rest of the line, which may hold spaces, if that names a file; else
@@ -106,16 +103,17 @@ MeshFile read_obj(const std::string& path) {
   std::vector<std::uint8_t> faux;
   // Face colours from the materials' diffuse colours, as MeshLab reads them: a face before
   // any material takes its light grey, and one after a material no file defines the colour
-  // before it. Kept if some face has a material's colour and every face has a colour (a
-  // textured material's faces have none: the texture colours them). Dropping them all
-  // where some faces had no material lost a model's colours with no word said.
+  // before it. Kept if some face has a material's colour and none is textured. Dropping
+  // them all where some faces had no material lost a model's colours with no word said.
   std::unordered_map<std::string, Material> materials;
   const Material* material = nullptr;
-  std::optional<Colour> colour = kMeshLabGrey;
+  Colour colour = kMeshLabGrey;
   std::vector<Colour> face_colours;
-  bool face_coloured = true, from_material = false;
-  // The texture: kept only if every face has coordinates and a material with an image.
-  bool textured = false, texture_whole = true;
+  bool from_material = false;
+  // The texture: a face is textured where every corner has coordinates and its material an
+  // image. Kept if some face is, with the others' colours baked in beside it: dropping it
+  // where one material had none lost a model's texture with only a note.
+  bool textured = false, coordinates_read = true, some_textured = false, all_textured = true;
   std::vector<TexCoord> coords;
   FileTexture texture;
   std::map<std::string, int> image_number;
@@ -134,6 +132,7 @@ MeshFile read_obj(const std::string& path) {
       const bool qobj = kw == "q";
       corners.clear();
       corner_coords.clear();
+      bool has_coords = true;
       for (std::size_t i = 1; i < in.size(); ++i) {
         const long long c = in.whole_number(i, "a vertex number (a face corner)", in[i].find('/'));
         const long long index = qobj ? c : c > 0 ? c - 1 : n() + c;
@@ -142,24 +141,35 @@ MeshFile read_obj(const std::string& path) {
                   " come before it)");
         corners.push_back(Index(index));
         std::size_t t;
-        if (texture_whole && (texture_whole = texture_corner(in[i], coords.size(), t)))
-          corner_coords.push_back(coords[t]);
+        const bool read = texture_corner(in[i], coords.size(), t);
+        has_coords = has_coords && read;
+        corner_coords.push_back(read ? coords[t] : TexCoord{0, 0});
       }
       if (qobj && corners.size() != 4) in.fail("a QOBJ quad ('q') with " + std::to_string(corners.size()) + " corners");
       if (corners.size() < 3) continue;  // fewer than three corners: no face
+      int image = -1;
+      if (has_coords && material && !material->image.empty())
+        image = image_number.emplace(material->image, int(image_number.size())).first->second;
+      from_material |= image < 0 && material && material->diffuse;
+      if (image >= 0 && !some_textured) {  // the faces before the first textured one, coloured
+        texture.triangles = triangles;
+        texture.coords.assign(triangles.size(), {});
+        texture.image.assign(triangles.size(), -1);
+        texture.colours = face_colours;
+      }
+      some_textured |= image >= 0, all_textured &= image >= 0;
       detail::fan(corners.data(), corners.size(), triangles, faux);
-      if (face_coloured && (face_coloured = colour.has_value())) face_colours.resize(triangles.size(), *colour);
-      from_material |= material && material->diffuse && colour;
-      if (texture_whole && (texture_whole = material && !material->image.empty())) {
-        const int image = image_number.emplace(material->image, int(image_number.size())).first->second;
+      face_colours.resize(triangles.size(), colour);
+      if (some_textured) {
         detail::fan(corners.data(), corner_coords.data(), corners.size(), image, texture);
+        texture.colours.resize(texture.triangles.size(), colour);
       }
     } else if (kw == "vt") {
       textured = true;
       // Coordinates that are not numbers leave the texture out, not the mesh.
       double u = 0, v = 0;
-      texture_whole =
-          texture_whole && in.size() > 1 && parse_number(in[1], u) && (in.size() < 3 || parse_number(in[2], v));
+      coordinates_read =
+          coordinates_read && in.size() > 1 && parse_number(in[1], u) && (in.size() < 3 || parse_number(in[2], v));
       coords.push_back({float(u), float(v)});
     } else if (kw == "mtllib") {
       // Material files are named relative to the OBJ's folder, several to a line, or one
@@ -170,14 +180,16 @@ MeshFile read_obj(const std::string& path) {
     } else if (kw == "usemtl") {
       const auto it = materials.find(name_on(in));
       material = it != materials.end() ? &it->second : nullptr;
-      if (material) colour = material->face_colour();
+      if (material) colour = material->colour;
     }
   }
-  if (!face_coloured || !from_material) face_colours.clear();
+  const bool keep_texture = coordinates_read && some_textured;
+  if (keep_texture || !from_material) face_colours.clear();
   MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, face_colours);
   if (coloured) out.colours = std::move(colours);
   out.texture_coordinates = textured;
-  if (texture_whole && !texture.empty()) {
+  if (keep_texture) {
+    if (all_textured) texture.colours.clear();
     texture.images.resize(image_number.size());
     for (const auto& [path, k] : image_number) texture.images[std::size_t(k)] = path;
     out.texture = std::move(texture);

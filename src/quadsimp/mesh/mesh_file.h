@@ -27,7 +27,10 @@ struct FileTexture {
   std::vector<std::string> images;              //!< image files, as paths readable from here
   std::vector<std::array<Index, 3>> triangles;  //!< corners, as positions' indices
   std::vector<std::array<TexCoord, 3>> coords;  //!< each triangle's corners' coordinates
-  std::vector<int> image;                       //!< each triangle's image
+  std::vector<int> image;                       //!< each triangle's image, or -1: its colour
+  //! Each triangle's colour where its image is -1 (an OBJ's faces whose material has a
+  //! colour and no image, beside textured ones); none where every triangle has an image.
+  std::vector<Colour> colours;
   bool empty() const { return triangles.empty(); }
 };
 

@@ -32,17 +32,21 @@ std::array<double, 4> sample(const Image& im, TexCoord uv) {
   return c;
 }
 
-// Texels the images spend on the surface: its triangles' areas in texture space.
-double texels_spent(const FileTexture& t, const std::vector<Image>& images) {
-  double texels = 0;
+// Texels the images spend on a unit of the surface they cover: its textured triangles'
+// areas in texture space over their areas (0 where none is textured).
+double texels_per_area(const std::vector<Vec3>& positions, const FileTexture& t, const std::vector<Image>& images) {
+  double texels = 0, area = 0;
   for (std::size_t i = 0; i < t.triangles.size(); ++i) {
+    if (t.image[i] < 0) continue;
     const auto& c = t.coords[i];
     const double uv_area = 0.5 * std::abs(double(c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) -
                                           double(c[2][0] - c[0][0]) * (c[1][1] - c[0][1]));
     const Image& im = images[std::size_t(t.image[i])];
     texels += uv_area * im.width * im.height;
+    const auto& v = t.triangles[i];
+    area += 0.5 * (positions[v[1]] - positions[v[0]]).cross(positions[v[2]] - positions[v[0]]).norm();
   }
-  return texels;
+  return area > 0 ? texels / area : 0.0;
 }
 
 // A quad's square in the atlas, its one-texel border included.
@@ -117,8 +121,9 @@ Atlas layout(const QuadMesh& quads, const std::vector<Index>& faces, const Textu
 QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& texture,
                          const std::vector<Image>& images, const QuadMesh& quads, const TextureBakeOptions& options) {
   for (int i : texture.image)
-    if (i < 0 || std::size_t(i) >= images.size() || images[std::size_t(i)].empty())
-      throw std::invalid_argument("bake_texture: a triangle's image is missing");
+    if (i < 0 ? texture.colours.size() != texture.triangles.size()
+              : std::size_t(i) >= images.size() || images[std::size_t(i)].empty())
+      throw std::invalid_argument("bake_texture: a triangle's image (or colour) is missing");
   if (!options.split.empty() && options.split.size() != quads.face_capacity())
     throw std::invalid_argument("bake_texture: one split per face id expected");
   std::vector<Index> faces;
@@ -131,8 +136,7 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
   soup.positions = positions;
   soup.faces = texture.triangles;
   const ReferenceSurface surface(std::move(soup));
-  const double density = surface.area() > 0 ? texels_spent(texture, images) / surface.area() : 0.0;
-  const Atlas atlas = layout(quads, faces, options, density);
+  const Atlas atlas = layout(quads, faces, options, texels_per_area(positions, texture, images));
   const std::vector<Tile>& tiles = atlas.tiles;
   Image& im = out.image;
   im.width = atlas.width, im.height = atlas.height;
@@ -174,13 +178,17 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
         if (!foot.found()) continue;  // every triangle without area: the texel stays black
         last = foot.distance;
         const std::size_t k = std::size_t(foot.face);
+        const std::size_t at_texel = std::size_t(y0 + 1 + b) * std::size_t(im.width) + std::size_t(x0 + 1 + a);
+        std::uint8_t* texel = &im.rgba[4 * at_texel];
+        if (texture.image[k] < 0) {
+          std::copy_n(texture.colours[k].begin(), 4, texel);
+          continue;
+        }
         const auto& c = texture.coords[k];
         const double w0 = 1 - foot.u - foot.v;
         const TexCoord uv{float(w0 * c[0][0] + foot.u * c[1][0] + foot.v * c[2][0]),
                           float(w0 * c[0][1] + foot.u * c[1][1] + foot.v * c[2][1])};
         const auto colour = sample(images[std::size_t(texture.image[k])], uv);
-        const std::size_t at_texel = std::size_t(y0 + 1 + b) * std::size_t(im.width) + std::size_t(x0 + 1 + a);
-        std::uint8_t* texel = &im.rgba[4 * at_texel];
         for (int j = 0; j < 4; ++j) texel[j] = colour_byte(colour[j]);
       }
     // The border: each texel a copy of the nearest inner one.
