@@ -68,6 +68,8 @@ MeshFile read_off(const std::string& path) {
 
   // A face's colour after its corners (bytes, or fractions with a decimal point); kept only
   // if every face has one (a single number there is an index into a colour map: none).
+  // MeshLab leaves a face without one at whatever its memory held (pymeshlab 2025.7 gave
+  // 130, 85, 0, 0 and 208, 28, 31, 119 in two files): there is no colour of its to follow.
   bool face_coloured = nf > 0;
   std::vector<Colour> face_colours;
   std::vector<Index> corners;
