@@ -80,6 +80,13 @@ Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions
     log(name + ": its texture coordinates are not carried to the quads (not every face has coordinates and an "
                "image); MeshLab's \"Transfer: Texture to Vertex Color (1 or 2 meshes)\" colours the quads from the "
                "texture (pymeshlab: transfer_texture_to_color_per_vertex)");
+  if (!file.texture.colours.empty() && log) {
+    // Faces left out of a texture are often an exporter's slip (a part without UVs).
+    const auto plain = std::count(file.texture.image.begin(), file.texture.image.end(), -1);
+    log(name + ": " + std::to_string(plain) + " of its " + std::to_string(file.texture.image.size()) +
+        " triangles have no texture (no coordinates, or a material without an image): the quads' texture shows "
+        "their face colour there");
+  }
   // Kept whole (Input::source).
   const bool coloured = !file.colours.empty() || file.has_face_colours() || !file.texture.empty();
   if (in.was_pure_quad) {
