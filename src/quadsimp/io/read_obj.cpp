@@ -141,9 +141,8 @@ MeshFile read_obj(const std::string& path) {
                   " come before it)");
         corners.push_back(Index(index));
         std::size_t t;
-        const bool read = texture_corner(in[i], coords.size(), t);
-        has_coords = has_coords && read;
-        corner_coords.push_back(read ? coords[t] : TexCoord{0, 0});
+        has_coords = has_coords && texture_corner(in[i], coords.size(), t);
+        if (has_coords) corner_coords.push_back(coords[t]);
       }
       if (qobj && corners.size() != 4) in.fail("a QOBJ quad ('q') with " + std::to_string(corners.size()) + " corners");
       if (corners.size() < 3) continue;  // fewer than three corners: no face
@@ -161,6 +160,7 @@ MeshFile read_obj(const std::string& path) {
       detail::fan(corners.data(), corners.size(), triangles, faux);
       face_colours.resize(triangles.size(), colour);
       if (some_textured) {
+        corner_coords.resize(corners.size());  // a face without: zeros, unread
         detail::fan(corners.data(), corner_coords.data(), corners.size(), image, texture);
         texture.colours.resize(texture.triangles.size(), colour);
       }
