@@ -386,6 +386,19 @@ TEST_F(MeshIo, ply_textures_are_read_with_their_images) {
     EXPECT_TRUE(g.texture_coordinates);
     EXPECT_EQ(g.quads.size(), 1u);
   }
+  // A face of texnumber -1 takes its face colour, where the faces have colours, as the
+  // filters take a layer's; without face colours, or with no face textured, no texture.
+  const std::string rgb = "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  const MeshFile c = read_mesh(write("-1.ply", header(two, "", corners + rgb) + square + quad + "0 9 9 9\n" +
+                                                   "3 1 4 2 6 1 0 0.5 0.25 1 1 -1 200 10 20\n"));
+  EXPECT_EQ(c.texture.image, (std::vector<int>{0, 0, -1}));
+  ASSERT_EQ(c.texture.colours.size(), 3u);
+  EXPECT_EQ(c.texture.colours[2], (Colour{200, 10, 20, 255}));
+  EXPECT_TRUE(read_mesh(write("-1.ply", header(two, "", corners) + square + quad + "0\n3 1 4 2 6 1 0 0.5 0.25 1 1 -1\n"))
+                  .texture.empty());
+  EXPECT_TRUE(read_mesh(write("-1.ply", header(two, "", corners + rgb) + square + quad + "-1 9 9 9\n" +
+                                            "3 1 4 2 6 1 0 0.5 0.25 1 1 -1 200 10 20\n"))
+                  .texture.empty());
 }
 
 // A texture written with the quads reads back as it was: OBJ's coordinates four to a face,

@@ -235,18 +235,29 @@ constexpr std::size_t kNoUvs = ~std::size_t(0);  // a polygon without coordinate
 
 // The polygons' texture, each fanned as the mesh is: from their corners' coordinates
 // (from `first_uv`, kNoUvs: none) or their vertices' (`vertex_uvs`, one per vertex or
-// none), into the images the header names (beside the file). Empty unless every polygon
-// has coordinates and names an image.
+// none), into the images the header names (beside the file). A polygon of texnumber -1
+// takes its colour (`colours`, one per polygon, or none) as the filters take a layer's
+// (texture_of()). Empty unless every polygon has coordinates and names an image, or has a
+// colour, and some polygon is textured.
 FileTexture texture_of_polygons(const std::string& path, const std::vector<std::string>& images,
                                 const std::vector<Index>& corners, const std::vector<std::size_t>& polygon_start,
                                 const std::vector<std::size_t>& first_uv, const std::vector<TexCoord>& corner_uvs,
-                                const std::vector<TexCoord>& vertex_uvs, const std::vector<int>& image) {
+                                const std::vector<TexCoord>& vertex_uvs, const std::vector<int>& image,
+                                const std::vector<Colour>& colours) {
   FileTexture t;
   if (images.empty() || polygon_start.size() < 2) return t;
   std::vector<TexCoord> by_vertex;  // a polygon's corners' coordinates, from their vertices'
+  bool some_textured = false;
   for (std::size_t i = 0; i + 1 < polygon_start.size(); ++i) {
     const std::size_t from = polygon_start[i], n = polygon_start[i + 1] - from;
+    if (image[i] == -1 && !colours.empty()) {
+      by_vertex.assign(n, TexCoord{0, 0});
+      detail::fan(&corners[from], by_vertex.data(), n, -1, t);
+      t.colours.resize(t.triangles.size(), colours[i]);
+      continue;
+    }
     if (image[i] < 0 || std::size_t(image[i]) >= images.size()) return {};
+    some_textured = true;
     const TexCoord* uv = first_uv[i] != kNoUvs ? &corner_uvs[first_uv[i]] : nullptr;
     if (!uv) {
       by_vertex.clear();
@@ -258,7 +269,10 @@ FileTexture texture_of_polygons(const std::string& path, const std::vector<std::
       uv = by_vertex.data();
     }
     detail::fan(&corners[from], uv, n, image[i], t);
+    if (!colours.empty()) t.colours.resize(t.triangles.size(), colours[i]);
   }
+  if (!some_textured) return {};
+  if (std::find(t.image.begin(), t.image.end(), -1) == t.image.end()) t.colours.clear();
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   for (const std::string& name : images) t.images.push_back(detail::file_beside(folder, name));
   return t;
@@ -445,8 +459,9 @@ MeshFile read_ply(const std::string& path) {
     if (n == 3) faux[first] |= flag_faux[i];  // the bits name a triangle's edges
     if (face_coloured) triangle_colours.resize(faux.size(), face_colours[i]);
   }
+  const std::vector<Colour> none;
   FileTexture texture = texture_of_polygons(path, header.textures, corners, polygon_start, polygon_uvs, corner_uvs,
-                                            vertex_uvs, polygon_image);
+                                            vertex_uvs, polygon_image, face_coloured ? face_colours : none);
   MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, triangle_colours);
   out.colours = std::move(colours);
   out.texture_coordinates = textured;
