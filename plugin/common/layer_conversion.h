@@ -101,7 +101,6 @@ template <class CMesh>
 FileTexture texture_of(const CMesh& m, bool wedge, std::vector<std::string> images, bool face_colours = false) {
   const std::vector<int> id = live_vertex_numbers(m);
   FileTexture t;
-  bool some_textured = false;
   for (const auto& f : m.face) {
     if (f.IsD()) continue;
     std::array<TexCoord, 3> coords;
@@ -118,12 +117,9 @@ FileTexture texture_of(const CMesh& m, bool wedge, std::vector<std::string> imag
     t.coords.push_back(coords);
     t.image.push_back(image);
     if (face_colours) t.colours.push_back({f.cC()[0], f.cC()[1], f.cC()[2], f.cC()[3]});
-    some_textured |= image >= 0;
   }
-  if (!some_textured) return {};
-  if (std::find(t.image.begin(), t.image.end(), -1) == t.image.end()) t.colours.clear();
   t.images = std::move(images);
-  return t;
+  return kept_texture(std::move(t));
 }
 
 //! Gives `quads` (as assign_quads(q, split) made them) the coordinates of `texture` as

@@ -113,7 +113,7 @@ MeshFile read_obj(const std::string& path) {
   // The texture: a face is textured where every corner has coordinates and its material an
   // image. Kept if some face is, with the others' colours baked in beside it: dropping it
   // where one material had none lost a model's texture with only a note.
-  bool textured = false, coordinates_read = true, some_textured = false, all_textured = true;
+  bool textured = false, coordinates_read = true, some_textured = false;
   std::vector<TexCoord> coords;
   FileTexture texture;
   std::map<std::string, int> image_number;
@@ -156,7 +156,7 @@ MeshFile read_obj(const std::string& path) {
         texture.image.assign(triangles.size(), -1);
         texture.colours = face_colours;
       }
-      some_textured |= image >= 0, all_textured &= image >= 0;
+      some_textured |= image >= 0;
       detail::fan(corners.data(), corners.size(), triangles, faux);
       face_colours.resize(triangles.size(), colour);
       if (some_textured) {
@@ -189,10 +189,9 @@ MeshFile read_obj(const std::string& path) {
   if (coloured) out.colours = std::move(colours);
   out.texture_coordinates = textured;
   if (keep_texture) {
-    if (all_textured) texture.colours.clear();
     texture.images.resize(image_number.size());
     for (const auto& [path, k] : image_number) texture.images[std::size_t(k)] = path;
-    out.texture = std::move(texture);
+    out.texture = kept_texture(std::move(texture));
   }
   return out;
 }

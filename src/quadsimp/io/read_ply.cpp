@@ -247,7 +247,6 @@ FileTexture texture_of_polygons(const std::string& path, const std::vector<std::
   FileTexture t;
   if (images.empty() || polygon_start.size() < 2) return t;
   std::vector<TexCoord> by_vertex;  // a polygon's corners' coordinates, from their vertices'
-  bool some_textured = false;
   for (std::size_t i = 0; i + 1 < polygon_start.size(); ++i) {
     const std::size_t from = polygon_start[i], n = polygon_start[i + 1] - from;
     if (image[i] == -1 && !colours.empty()) {
@@ -257,7 +256,6 @@ FileTexture texture_of_polygons(const std::string& path, const std::vector<std::
       continue;
     }
     if (image[i] < 0 || std::size_t(image[i]) >= images.size()) return {};
-    some_textured = true;
     const TexCoord* uv = first_uv[i] != kNoUvs ? &corner_uvs[first_uv[i]] : nullptr;
     if (!uv) {
       by_vertex.clear();
@@ -271,11 +269,9 @@ FileTexture texture_of_polygons(const std::string& path, const std::vector<std::
     detail::fan(&corners[from], uv, n, image[i], t);
     if (!colours.empty()) t.colours.resize(t.triangles.size(), colours[i]);
   }
-  if (!some_textured) return {};
-  if (std::find(t.image.begin(), t.image.end(), -1) == t.image.end()) t.colours.clear();
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   for (const std::string& name : images) t.images.push_back(detail::file_beside(folder, name));
-  return t;
+  return kept_texture(std::move(t));
 }
 
 }  // namespace

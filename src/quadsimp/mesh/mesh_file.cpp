@@ -6,6 +6,13 @@
 
 namespace qs {
 
+FileTexture kept_texture(FileTexture t) {
+  const auto coloured = [](int image) { return image < 0; };
+  if (std::all_of(t.image.begin(), t.image.end(), coloured)) return {};
+  if (std::none_of(t.image.begin(), t.image.end(), coloured)) t.colours.clear();
+  return t;
+}
+
 MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array<Index, 3>> tris,
                              const std::vector<std::uint8_t>& faux, const std::vector<Colour>& colours) {
   MeshFile out;

@@ -34,6 +34,10 @@ struct FileTexture {
   bool empty() const { return triangles.empty(); }
 };
 
+//! A texture read face by face, as kept: none where no triangle has an image (colours
+//! alone are face colours, not a texture), and no colours where every triangle has one.
+FileTexture kept_texture(FileTexture texture);
+
 //! A mesh as a file or a host application holds it, before any cleaning: its quads and
 //! its other faces as triangles (a polygon of five or more corners fanned); a pure quad
 //! mesh has quads alone.
