@@ -331,7 +331,7 @@ TEST_F(MeshIo, obj_faces_without_a_texture_keep_their_colour_beside_it) {
   const std::string vt = "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.25\n";
   const std::string faces = "f 1/1 2/2 3/3\nusemtl a\nf 1/1 3/3 4/4\nf 1 2 5\nusemtl plain\nf 2/2 5/5 3/3\n";
   const MeshFile f = read_mesh(write("t.obj", v + vt + faces));
-  EXPECT_EQ(f.texture.image, (std::vector<int>{-1, 0, -1, -1}));
+  ASSERT_EQ(f.texture.image, (std::vector<int>{-1, 0, -1, -1}));  // coords[1] is read below
   const Colour grey{192, 192, 192, 255}, yellow{255, 255, 0, 255}, red{255, 0, 0, 255};
   EXPECT_EQ(f.texture.colours, (std::vector<Colour>{grey, yellow, yellow, red}));
   EXPECT_EQ(f.texture.triangles, f.triangles);
@@ -391,7 +391,7 @@ TEST_F(MeshIo, ply_textures_are_read_with_their_images) {
   const std::string rgb = "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   const MeshFile c = read_mesh(write("-1.ply", header(two, "", corners + rgb) + square + quad + "0 9 9 9\n" +
                                                    "3 1 4 2 6 1 0 0.5 0.25 1 1 -1 200 10 20\n"));
-  EXPECT_EQ(c.texture.image, (std::vector<int>{0, 0, -1}));
+  ASSERT_EQ(c.texture.image, (std::vector<int>{0, 0, -1}));
   ASSERT_EQ(c.texture.colours.size(), 3u);
   EXPECT_EQ(c.texture.colours[2], (Colour{200, 10, 20, 255}));
   EXPECT_TRUE(read_mesh(write("-1.ply", header(two, "", corners) + square + quad + "0\n3 1 4 2 6 1 0 0.5 0.25 1 1 -1\n"))

@@ -249,15 +249,13 @@ FileTexture texture_of_polygons(const std::string& path, const std::vector<std::
   std::vector<TexCoord> by_vertex;  // a polygon's corners' coordinates, from their vertices'
   for (std::size_t i = 0; i + 1 < polygon_start.size(); ++i) {
     const std::size_t from = polygon_start[i], n = polygon_start[i + 1] - from;
-    if (image[i] == -1 && !colours.empty()) {
-      by_vertex.assign(n, TexCoord{0, 0});
-      detail::fan(&corners[from], by_vertex.data(), n, -1, t);
-      t.colours.resize(t.triangles.size(), colours[i]);
-      continue;
-    }
-    if (image[i] < 0 || std::size_t(image[i]) >= images.size()) return {};
+    const bool coloured = image[i] == -1 && !colours.empty();  // its coordinates unread
+    if (!coloured && (image[i] < 0 || std::size_t(image[i]) >= images.size())) return {};
     const TexCoord* uv = first_uv[i] != kNoUvs ? &corner_uvs[first_uv[i]] : nullptr;
-    if (!uv) {
+    if (coloured) {
+      by_vertex.assign(n, TexCoord{0, 0});
+      uv = by_vertex.data();
+    } else if (!uv) {
       by_vertex.clear();
       for (std::size_t k = 0; k < n; ++k) {
         const Index v = corners[from + k];

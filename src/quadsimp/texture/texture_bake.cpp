@@ -33,8 +33,9 @@ std::array<double, 4> sample(const Image& im, TexCoord uv) {
 }
 
 // Texels the images spend on a unit of the surface they cover: its textured triangles'
-// areas in texture space over their areas (0 where none is textured).
-double texels_per_area(const std::vector<Vec3>& positions, const FileTexture& t, const std::vector<Image>& images) {
+// areas in texture space over their areas on `surface` (the texture's triangles; 0 where
+// none is textured).
+double texels_per_area(const TriMesh& surface, const FileTexture& t, const std::vector<Image>& images) {
   double texels = 0, area = 0;
   for (std::size_t i = 0; i < t.triangles.size(); ++i) {
     if (t.image[i] < 0) continue;
@@ -43,8 +44,7 @@ double texels_per_area(const std::vector<Vec3>& positions, const FileTexture& t,
                                           double(c[2][0] - c[0][0]) * (c[1][1] - c[0][1]));
     const Image& im = images[std::size_t(t.image[i])];
     texels += uv_area * im.width * im.height;
-    const auto& v = t.triangles[i];
-    area += 0.5 * (positions[v[1]] - positions[v[0]]).cross(positions[v[2]] - positions[v[0]]).norm();
+    area += 0.5 * surface.area_normal(surface.faces[i]).norm();
   }
   return area > 0 ? texels / area : 0.0;
 }
@@ -135,8 +135,9 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
   TriMesh soup;
   soup.positions = positions;
   soup.faces = texture.triangles;
+  const double density = texels_per_area(soup, texture, images);
   const ReferenceSurface surface(std::move(soup));
-  const Atlas atlas = layout(quads, faces, options, texels_per_area(positions, texture, images));
+  const Atlas atlas = layout(quads, faces, options, density);
   const std::vector<Tile>& tiles = atlas.tiles;
   Image& im = out.image;
   im.width = atlas.width, im.height = atlas.height;
