@@ -39,7 +39,10 @@ CliRun capture(const std::string& command) {
   return r;
 }
 
-CliRun run(const std::string& args) { return capture(fixtures::cli_path() + " " + args + " 2>&1"); }
+// Under timeout(1), so that a run that never ends fails its test (code 124) instead of the suite.
+CliRun run(const std::string& args) {
+  return capture("timeout 600 " + fixtures::cli_path() + " " + args + " 2>&1");
+}
 
 // The same on a terminal: script(1) (util-linux, on every Debian) gives the command a
 // pseudo-terminal and copies what it writes there.
@@ -905,6 +908,14 @@ TEST_F(Cli, bad_input_exits_1_and_writes_nothing) {
                            "f 1 3 2\nf 2 3 4\nf 3 5 4\nf 4 5 6\nf 5 7 6\nf 6 7 8\nf 7 2 8\nf 8 2 1\n"),
       write("empty.off", ""),
       write("junk.ply", "garbage\n"),
+      // vcglib's STL reader looped for ever on files without a line break that are not a
+      // binary STL of the size their facet count gives.
+      write("line.stl", "solid a facet normal 0 0 1 outer loop vertex 0 0 0 vertex 1 0 0 vertex 1 1 0 endloop "
+                        "endfacet endsolid a"),
+      write("cut.stl", std::string(80, '\0') + std::string("\5\0\0\0", 4) + std::string(60, '\0')),
+      // Every triangle has an area, but the weld of its borders leaves none.
+      write("thread.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1e-7 0\nv 1 1e-7 0\nv 2 1e-7 0\n"
+                          "f 1 2 5\nf 1 5 4\nf 2 3 6\nf 2 6 5\n"),
   };
   for (const auto& in : bad) {
     SCOPED_TRACE(in);

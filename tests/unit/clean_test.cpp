@@ -1004,6 +1004,12 @@ TEST(Clean, refuses_unusable_input_with_one_sentence) {
   flat.faces = {{0, 1, 2}};
   EXPECT_NE(message_of(flat).find("degenerate"), std::string::npos);
 
+  // Each triangle has an area, but the strip's two borders are closer than the weld's
+  // tolerance, and welding them leaves nothing.
+  TriMesh thread = tri_grid(200, 1);
+  for (Vec3& p : thread.positions) p.y() *= 5e-7;
+  EXPECT_NE(message_of(thread).find("degenerate once border vertices"), std::string::npos);
+
   for (const std::string& m : {message_of(empty), message_of(moebius)}) {
     EXPECT_EQ(m.rfind("in.ply: ", 0), 0u) << m;  // names the file first
     EXPECT_EQ(m.find('\n'), std::string::npos);

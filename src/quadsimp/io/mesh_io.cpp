@@ -13,8 +13,10 @@
 #include <cctype>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -55,9 +57,29 @@ void check_readable(const std::string& path) {
   if (probe.peek() == std::ifstream::traits_type::eof()) fail_file(path, "the file is empty");
 }
 
+// vcglib takes a file that is not a binary STL of the size its facet count gives for ASCII,
+// and its ASCII reader starts by skipping a line up to a '\n', in a loop that never ends
+// where the file has none ("solid" alone, a truncated binary file of zeros).
+void check_stl_has_a_line_or_its_size(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char header[84];
+  if (in.read(header, sizeof header)) {
+    std::uint32_t facets = 0;
+    std::memcpy(&facets, header + 80, 4);
+    const auto size = std::uintmax_t(std::filesystem::file_size(path));
+    if (size == 84 + 50 * std::uintmax_t(facets)) return;
+  }
+  in.clear();
+  in.seekg(0);
+  if (std::find(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), '\n') ==
+      std::istreambuf_iterator<char>())
+    fail_file(path, "unreadable STL (neither a binary STL of the size its facet count gives, nor lines of text)");
+}
+
 // STL through vcglib's importer, which makes each facet three vertices of its own: a
 // triangle soup, with no deleted elements or faux edges (cleaning welds it).
 MeshFile read_stl(const std::string& path) {
+  check_stl_has_a_line_or_its_size(path);
   TMesh m;
   int mask = 0;
   const int err = vcg::tri::io::ImporterSTL<TMesh>::Open(m, path.c_str(), mask);

@@ -538,6 +538,9 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, const Cl
     adj = manifold_adjacency();
     if (merge_close_border_vertices(m, adj, r)) {
       remove_degenerate_and_duplicate_faces(m, r);
+      if (m.faces.empty())
+        throw InvalidInput(src + ": every face is degenerate once border vertices closer than 1e-6 of the "
+                           "bounding-box diagonal are merged (a strip thinner than that)");
       adj = manifold_adjacency();
     }
     if ((r.zipped_t_junctions = zip_cracks(m, adj))) adj = manifold_adjacency();
