@@ -9,8 +9,9 @@
 #include "quadsimp/util/errors.h"
 
 // stb's single-file libraries (Debian's libstb-dev), compiled here, their functions kept
-// to this file.
+// to this file. USERMSG: stb's failure reasons read "Corrupt PNG", not "outofdata".
 #define STB_IMAGE_STATIC
+#define STBI_FAILURE_USERMSG
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
 #define STB_IMAGE_WRITE_STATIC
