@@ -94,6 +94,19 @@ QuadTexture texture_for(const std::string& output, const Input& in, int size, co
   }
 }
 
+// The quads with their colours and texture, as the output keeps them. Where the texture
+// is not written, an OBJ's faces coloured beside it keep their colour: only the texture
+// held it (a PLY keeps its face colours beside its texture).
+void write_result(const std::string& output, const Input& in, int texture_size, const LogFn& log) {
+  const QuadTexture texture = texture_for(output, in, texture_size, log);
+  const MeshFile& from = in.source;
+  const bool colours_left = texture.empty() && !from.texture.colours.empty() && !from.has_face_colours();
+  if (colours_left && log)
+    log(output + ": its quads take the colours of the input's faces instead (a textured face's is its material's)");
+  write_quad_mesh(output, in.quads, colours_of_quads(colours_left ? texture_colours_as_faces(from) : from, in.quads),
+                  texture);
+}
+
 void print_summary(const SimplifyArgs& a, const QuadQuality& q, double seconds, const SimplifyReport& r) {
   std::printf("%s -> %s: %u faces, regular %.1f%%, max valence %d, %.2f s (%s)\n", a.input.c_str(), a.output.c_str(),
               q.faces, q.regular_percent, q.max_valence, seconds, operations_done(r).c_str());
@@ -129,8 +142,7 @@ int run_convert(const ConvertArgs& a) {
       std::cerr << "quadsimp convert: " << why << "\n";
       return kBadArguments;
     }
-    write_quad_mesh(a.output, in.quads, colours_of_quads(in.source, in.quads),
-                    texture_for(a.output, in, a.texture_size, log));
+    write_result(a.output, in, a.texture_size, log);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (in.was_pure_quad) {
       std::printf("%s: already pure quad, %u quads written to %s (%.2f s)\n", a.input.c_str(),
@@ -174,8 +186,7 @@ int run_simplify(const SimplifyArgs& a) {
     const ReferenceSurface ref(std::move(in.reference));
     const Index converted = in.quads.n_faces();  // what a share of the quads is of
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
-    write_quad_mesh(a.output, in.quads, colours_of_quads(in.source, in.quads),
-                    texture_for(a.output, in, a.texture_size, log));
+    write_result(a.output, in, a.texture_size, log);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const QuadQuality q = quad_quality(in.quads, &ref);
     if (log)

@@ -396,6 +396,29 @@ TEST_F(Cli, an_obj_textured_in_part_keeps_its_colours_beside_its_texture) {
     ++(x < 0.5 ? left : right);
   }
   EXPECT_GT(std::min(left, right), 4);
+
+  // Where the texture is not written (OFF; an image that cannot be read), the faces keep
+  // their colours as face colours, the textured ones their material's.
+  for (const std::string out : {"q.off", "no_image.obj"}) {
+    SCOPED_TRACE(out);
+    if (out == "no_image.obj") fs::remove(p("blue.png"));
+    const CliRun again = run("simplify " + in + " " + p(out) + " --faces 20");
+    ASSERT_EQ(again.code, 0) << again.out;
+    EXPECT_NE(again.out.find(": its quads take the colours of the input's faces instead"), std::string::npos)
+        << again.out;
+    const MeshFile q = read_mesh(p(out));
+    EXPECT_TRUE(q.texture.empty());
+    ASSERT_EQ(q.quad_colours.size(), q.quads.size());
+    int white = 0, red = 0;
+    for (std::size_t f = 0; f < q.quads.size(); ++f) {
+      double x = 0;
+      for (Index v : q.quads[f]) x += q.positions[v].x() / 4;
+      if (std::abs(x - 0.5) < 0.2) continue;
+      EXPECT_EQ(q.quad_colours[f], x < 0.5 ? (Colour{255, 255, 255, 255}) : (Colour{255, 0, 0, 255})) << x;
+      ++(x < 0.5 ? white : red);
+    }
+    EXPECT_GT(std::min(white, red), 2);
+  }
 }
 
 // Texture coordinates without an image for every face are not carried: the log says so,

@@ -337,6 +337,14 @@ TEST_F(MeshIo, obj_faces_without_a_texture_keep_their_colour_beside_it) {
   EXPECT_EQ(f.texture.triangles, f.triangles);
   EXPECT_EQ(f.texture.coords[1], (std::array<TexCoord, 3>{TexCoord{0, 0}, TexCoord{1, 1}, TexCoord{0, 1}}));
   EXPECT_FALSE(f.has_face_colours());  // the texture holds them
+  // ... and gives them back as face colours where the texture cannot be written.
+  const MeshFile faces_only = texture_colours_as_faces(f);
+  EXPECT_EQ(faces_only.triangles, f.texture.triangles);
+  EXPECT_EQ(faces_only.triangle_colours, f.texture.colours);
+  EXPECT_EQ(faces_only.positions, f.positions);
+  MeshFile uncoloured = f;
+  uncoloured.texture.colours.clear();
+  EXPECT_THROW(texture_colours_as_faces(uncoloured), std::invalid_argument);
   // Coordinates that are not numbers: no texture; the face colours stay.
   const MeshFile g = read_mesh(write("g.obj", v + vt + "vt x 1\n" + faces));
   EXPECT_TRUE(g.texture.empty());

@@ -2,6 +2,7 @@
 #include "quadsimp/mesh/mesh_file.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace qs {
@@ -11,6 +12,17 @@ FileTexture kept_texture(FileTexture t) {
   if (std::all_of(t.image.begin(), t.image.end(), coloured)) return {};
   if (std::none_of(t.image.begin(), t.image.end(), coloured)) t.colours.clear();
   return t;
+}
+
+MeshFile texture_colours_as_faces(const MeshFile& file) {
+  if (file.texture.colours.size() != file.texture.triangles.size())
+    throw std::invalid_argument("texture_colours_as_faces: the texture has no colour for each triangle");
+  MeshFile out;
+  out.positions = file.positions;
+  out.colours = file.colours;
+  out.triangles = file.texture.triangles;
+  out.triangle_colours = file.texture.colours;
+  return out;
 }
 
 MeshFile pair_faux_triangles(std::vector<Vec3> positions, std::vector<std::array<Index, 3>> tris,

@@ -57,6 +57,13 @@ struct MeshFile {
   bool has_face_colours() const { return !triangle_colours.empty() || !quad_colours.empty(); }
 };
 
+//! `file`'s surface as its texture's triangles, with the texture's colours as face
+//! colours (a coloured triangle's own, a textured one's its material's) and the file's
+//! vertex colours: what keeps an OBJ's faces coloured beside its texture in their colour
+//! where the texture cannot be written (OFF, an image that cannot be read). Needs
+//! file.texture.colours.
+MeshFile texture_colours_as_faces(const MeshFile& file);
+
 //! Rebuilds quads from triangles that carry "faux" edge flags, the way vcglib and
 //! MeshLab store polygons: bit k of faux[t] marks edge k (corner k to k+1) of triangle
 //! t as the inner diagonal of a quad. Triangles paired through a faux edge shared with a
