@@ -751,6 +751,35 @@ TEST_F(MeshIo, text_files_with_comments_colours_and_signs_are_read) {
   }
 }
 
+// vcglib reads an STL as binary where its size is its facet count's, or where its first
+// bytes of facets hold one over 127 (a size a little off); else as ASCII, whose reader
+// never returned on a file without a line break. Such files are refused; binary ones
+// without a line break are still read.
+TEST_F(MeshIo, an_stl_without_a_line_break_is_read_as_binary_or_refused) {
+  std::string stl(80, ' ');
+  const std::uint32_t one = 1;
+  stl.append(reinterpret_cast<const char*>(&one), 4);
+  const float facet[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 1, 0};  // 1.0f holds a byte 0x80
+  stl.append(reinterpret_cast<const char*>(facet), sizeof facet);
+  stl.append(2, '\0');
+  ASSERT_EQ(stl.find('\n'), std::string::npos);
+  for (const std::string& file : {stl, stl + std::string(2, '\0')}) {  // its size, and 2 bytes over
+    const MeshFile m = read_mesh(write("b.stl", file));
+    EXPECT_EQ(m.triangles.size(), 1u);
+    EXPECT_EQ(m.positions[1], Vec3(1, 0, 0));
+  }
+  const std::string text =
+      "solid a facet normal 0 0 1 outer loop vertex 0 0 0 vertex 1 0 0 vertex 1 1 0 endloop endfacet endsolid a";
+  for (const std::string& file : {text, std::string(80, '\0') + std::string("\5\0\0\0", 4) + std::string(60, '\0')}) {
+    try {
+      read_mesh(write("t.stl", file));
+      ADD_FAILURE() << "read";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("nor lines of text"), std::string::npos) << e.what();
+    }
+  }
+}
+
 // Files damaged by fields, lines and bytes, in every format we read: each is loaded or
 // refused with one line naming it, never a crash nor another exception. Before the
 // readers' checks such files crashed all four text and binary readers (found by running
