@@ -156,6 +156,43 @@ TEST(TriToQuad, a_noisy_sphere_pairs_every_triangle_where_the_searches_leave_som
   }
 }
 
+// A cone as CAD tessellations write it: a fan of triangles round its tip, another round
+// its base's centre. Greedy pairing took both fans' pairs with the same parity, which
+// left a doublet (an interior vertex of two quad edges) at every other rim vertex; the
+// simplifier's first cleaning merged them, each merge making new ones, down to two
+// quads on four corners, whatever the target.
+TEST(TriToQuad, a_cad_cones_two_fans_pair_without_doublets) {
+  for (const Index n : {16u, 64u}) {
+    SCOPED_TRACE(n);
+    TriMesh t;
+    for (Index k = 0; k < n; ++k) {
+      const double a = 2 * M_PI * double(k) / double(n);
+      t.positions.emplace_back(std::cos(a), std::sin(a), 0);
+    }
+    t.positions.emplace_back(0, 0, 2), t.positions.emplace_back(0, 0, 0);
+    for (Index k = 0; k < n; ++k) {
+      t.faces.push_back({k, (k + 1) % n, n});
+      t.faces.push_back({(k + 1) % n, k, n + 1});
+    }
+    convert_and_check(t);
+    const QuadMesh q = tri_to_quad(t);
+    Index doublets = 0;
+    for (Index v = 0; v < q.vertex_capacity(); ++v) {
+      Index valence = 0;
+      q.for_each_outgoing(v, [&](Index) { ++valence; });
+      doublets += q.is_vertex_live(v) && !q.is_border_vertex(v) && valence == 2;
+    }
+    EXPECT_EQ(doublets, 0u);
+    Input in = prepare_input(MeshFile{t.positions, t.faces, {}}, "cone");
+    const ReferenceSurface ref(std::move(in.reference));
+    SimplifyParams params;
+    params.target_faces = n / 2;
+    const SimplifyReport r = simplify_input(in, ref, params);
+    EXPECT_EQ(r.initial_faces, n);  // no doublet merged away
+    EXPECT_GE(in.quads.n_faces(), n / 2);
+  }
+}
+
 TEST(TriToQuad, deterministic) {
   TriMesh t = tri_grid(20, 17, 0.3);
   clean(t);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "quadsimp/reference/creases.h"
@@ -403,9 +404,35 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
     std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) {
       return a.score > b.score || (a.score == b.score && (a.f < b.f || (a.f == b.f && a.k < b.k)));
     });
+    // A pair whose diagonal joins a fan's centre (kFan triangles or more round it) to an
+    // interior vertex it would leave with two quad edges (a doublet: its two quads share
+    // both) is left to the searches below. The simplifier's first cleaning merges
+    // doublets; round a fan, each merge makes the next one a doublet. A CAD cone (a fan
+    // round its tip, another round its base's centre) whose fans were paired with the same
+    // parity had a doublet at every other rim vertex, and was merged down to two quads on
+    // four corners. Elsewhere doublets merge where they are (the armadillo's conversion
+    // has 730): bounding every interior vertex moved the armadillo's and the gargoyle's
+    // pairings by a few triangles and their results by what any such change moves them
+    // (bench/RESULTS.md). `room`: the diagonals an interior vertex may still take before
+    // it keeps two edges; none bounds a vertex on a border (or a crease: `adj` has no
+    // neighbour across one).
+    constexpr int kFan = 10;  // a scan's or a remeshed surface's vertices have about six
+    std::vector<int> degree(t.n_vertices(), 0), room(t.n_vertices(), std::numeric_limits<int>::max());
+    std::vector<char> on_border(t.n_vertices(), 0);
+    for (Index f = 0; f < t.n_faces(); ++f)
+      for (Index k = 0; k < 3; ++k) {
+        ++degree[t.faces[f][k]];
+        if (adj[f][k] == kNone) on_border[t.faces[f][k]] = on_border[t.faces[f][(k + 1) % 3]] = 1;
+      }
+    for (Index v = 0; v < t.n_vertices(); ++v)
+      if (!on_border[v]) room[v] = degree[v] - 3;
+    const auto makes_doublet = [&](Index v, Index centre) { return room[v] <= 0 && degree[centre] >= kFan; };
     for (const Cand& c : cand) {
       const Index g = adj[c.f][c.k];
       if (mate[c.f] != kNone || mate[g] != kNone) continue;
+      const Index a = t.faces[c.f][c.k], b = t.faces[c.f][(c.k + 1) % 3];
+      if (makes_doublet(a, b) || makes_doublet(b, a)) continue;
+      --room[a], --room[b];
       mate[c.f] = g;
       mate[g] = c.f;
       r.paired_greedy += 2;
