@@ -573,6 +573,17 @@ TEST_F(Cli, a_target_the_mesh_cannot_reach_is_reported) {
   r = run("simplify " + grid + " " + p("g.ply") + " --faces 100000");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("note: the target of 100000 quads is above the "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the input converts to: nothing was simplified"), std::string::npos) << r.out;
+  // Two quads sharing two edges round a vertex (a doublet) are one quad once cleaning has
+  // merged them: the note counts what is left, not what was read.
+  const std::string doublet =
+      write("doublet.obj", "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nv 0.8 1.2 0\nf 1 2 3 5\nf 1 5 3 4\n");
+  r = run("simplify " + doublet + " " + p("d.obj") + " --faces 2");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("note: the target of 2 quads is above the 1 left of the 2 the input converts to once their "
+                       "doublets (two quads sharing two edges) are merged"),
+            std::string::npos)
+      << r.out;
 }
 
 TEST_F(Cli, automatic_halting_that_runs_out_of_collapses_says_so) {

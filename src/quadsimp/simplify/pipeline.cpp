@@ -94,16 +94,21 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
 
 std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
   const auto n = [](Index x) { return std::to_string(x); };
-  if (target_faces > r.initial_faces)
+  if (target_faces > r.initial_faces) {
+    if (r.given_faces > r.initial_faces)
+      return "the target of " + n(target_faces) + " quads is above the " + n(r.initial_faces) + " left of the " +
+             n(r.given_faces) + " the input converts to once their doublets (two quads sharing two edges) are "
+             "merged: nothing else was simplified";
     return "the target of " + n(target_faces) + " quads is above the " + n(r.initial_faces) +
            " the input converts to: nothing was simplified (the result is the conversion)";
+  }
   const auto refusals = [&] {
     return "every remaining collapse was refused (refusals over the run: " + n(r.refused_topology) +
            " topology, e.g. holes and kept borders; " + n(r.refused_valence) + " valence cap; " +
            n(r.refused_geometry) + " shape; " + n(r.refused_fitmap) + " M-fitmap; " + n(r.refused_reach) + " reach)";
   };
   if (target_faces == 0 && r.ran_out)
-    return "automatic halting stopped at " + n(r.faces) + " quads (the input converts to " + n(r.initial_faces) +
+    return "automatic halting stopped at " + n(r.faces) + " quads (the input converts to " + n(r.given_faces) +
            ") before the M-fitmap blocked its share of the surface: " + refusals();
   if (target_faces == 0 || r.faces <= target_faces || r.cancelled) return {};
   const std::string above = "stopped at " + n(r.faces) + " quads, above the target of " + n(target_faces) + ": ";

@@ -541,6 +541,7 @@ SimplifyReport Simplifier::run() {
   // Crease vertices are known before the first cleaning, which must keep their doublets.
   held_.assign(m_.vertex_capacity(), 0);
   mark_creases();
+  rep_.given_faces = m_.n_faces();
   const CleanCounts initial = clean_all(m_, crease_.empty() ? nullptr : &on_crease_);
   rep_.doublets += initial.doublets;
   rep_.singlets += initial.singlets;

@@ -194,7 +194,8 @@ struct SimplifyOptions {
 
 struct SimplifyReport {
   Index target_faces = 0;  //!< the run's face target (SimplifyOptions::target_faces; 0: none)
-  Index initial_faces = 0;
+  Index given_faces = 0;    //!< the quads given, before the first cleaning merged their doublets
+  Index initial_faces = 0;  //!< the quads after that cleaning, where the loop starts
   Index faces = 0;
   Index collapses = 0;
   Index border_collapses = 0;  //!< border ear collapses (coarsen_border)
