@@ -997,7 +997,21 @@ TEST(Clean, refuses_unusable_input_with_one_sentence) {
   for (Index i = 0; i < 3; ++i)
     moebius.faces.push_back({2 * i, 2 * i + 2, 2 * i + 1}), moebius.faces.push_back({2 * i + 1, 2 * i + 2, 2 * i + 3});
   moebius.faces.push_back({6, 1, 7}), moebius.faces.push_back({7, 1, 0});  // the last quad joins 6-7 to 1-0
-  EXPECT_NE(message_of(moebius).find("not orientable"), std::string::npos);
+  const std::string twisted = message_of(moebius);
+  EXPECT_NE(twisted.find("not orientable"), std::string::npos);
+  // ... and says where, at the middle of an edge of the strip.
+  const std::string at = "the edge whose middle is at ";
+  ASSERT_NE(twisted.find(at), std::string::npos) << twisted;
+  Vec3 middle;
+  ASSERT_EQ(std::sscanf(twisted.c_str() + twisted.find(at) + at.size(), "%lf, %lf, %lf", &middle.x(), &middle.y(),
+                        &middle.z()),
+            3)
+      << twisted;
+  bool on_an_edge = false;
+  for (const auto& f : moebius.faces)
+    for (int k = 0; k < 3; ++k)
+      on_an_edge |= (0.5 * (moebius.positions[f[k]] + moebius.positions[f[(k + 1) % 3]]) - middle).norm() < 1e-9;
+  EXPECT_TRUE(on_an_edge) << twisted;
 
   TriMesh flat;
   flat.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};

@@ -405,7 +405,12 @@ void orient(TriMesh& m, std::vector<std::array<Index, 3>>& adj, CleanReport& r, 
           flip[g] = want;
           stack.push_back(g);
         } else if (flip[g] != want) {
-          throw InvalidInput(src + ": the surface is not orientable (a Moebius-like strip)");
+          // Where: a user can select round that point in MeshLab and delete or mend it.
+          const Vec3 at = 0.5 * (m.positions[a] + m.positions[b]);
+          char where[96];
+          std::snprintf(where, sizeof where, "%.6g, %.6g, %.6g", at.x(), at.y(), at.z());
+          throw InvalidInput(src + ": the surface is not orientable (a Moebius-like strip; its two sides meet at "
+                             "the edge whose middle is at " + where + ")");
         }
       }
     }
