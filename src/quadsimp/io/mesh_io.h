@@ -43,7 +43,8 @@ struct QuadColours {
 void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadColours& colours = {},
                      const QuadTexture& texture = {});
 
-//! Where write_quad_mesh() puts a texture: "DIR/NAME_texture.png" for DIR/NAME.obj or .ply.
+//! Where write_quad_mesh() puts a texture: "DIR/NAME_texture.png" for DIR/NAME.obj or .ply,
+//! each character of NAME but ASCII letters, digits, '.', '-' and '_' made '_' (for MeshLab).
 std::string texture_path_of(const std::string& path);
 
 //! The colours of `from` (read_mesh()'s) on the quads, as the MeshLab filters give them

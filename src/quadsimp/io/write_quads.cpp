@@ -199,9 +199,20 @@ void write_mtl(const std::string& path, const std::map<Colour, int>& materials, 
 
 }  // namespace
 
+// The name keeps ASCII letters, digits, '.', '-' and '_' only: MeshLab's OBJ reader takes
+// a map_Kd of one word, and its PLY reader drops spaces and bytes past '|' from a
+// TextureFile, so it found no texture beside "my scan.obj" or "scène.ply".
 std::string texture_path_of(const std::string& path) {
-  std::filesystem::path p(path);
-  return p.replace_extension().string() + "_texture.png";
+  const std::filesystem::path p(path);
+  std::string name;
+  for (const char c : p.stem().string()) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte & 0xC0) == 0x80) continue;  // UTF-8's continuation bytes: a character gives one '_'
+    const bool kept = (byte >= '0' && byte <= '9') || (byte >= 'A' && byte <= 'Z') || (byte >= 'a' && byte <= 'z') ||
+                      byte == '.' || byte == '-' || byte == '_';
+    name += kept ? c : '_';
+  }
+  return (p.parent_path() / (name + "_texture.png")).string();
 }
 
 void write_quad_mesh(const std::string& path, const QuadMesh& mesh, const QuadColours& colours,
