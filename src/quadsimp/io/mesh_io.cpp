@@ -13,10 +13,8 @@
 #include <cctype>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -57,37 +55,19 @@ void check_readable(const std::string& path) {
   if (probe.peek() == std::ifstream::traits_type::eof()) fail_file(path, "the file is empty");
 }
 
-// vcglib reads a file as ASCII STL where it is not a binary STL of the size its facet
-// count gives and its first 1,000 bytes of facets hold no byte over 127; that reader
-// starts by skipping a line up to a '\n', in a loop that never ends where the file has
-// none (all on one line, a truncated binary file of zeros).
-void check_stl_ends_its_first_line(const std::string& path) {
-  constexpr std::size_t kHeader = 84, kProbe = 1000;
-  std::ifstream in(path, std::ios::binary);
-  std::string head(kHeader + kProbe, '\0');
-  in.read(head.data(), std::streamsize(head.size()));
-  head.resize(std::size_t(in.gcount()));
-  if (head.size() > kHeader) {
-    std::uint32_t facets = 0;
-    std::memcpy(&facets, head.data() + 80, 4);
-    const bool sized = std::filesystem::file_size(path) == kHeader + 50 * std::uintmax_t(facets);
-    const auto high = [](char c) { return static_cast<unsigned char>(c) > 127; };
-    if (sized || std::any_of(head.begin() + kHeader, head.end(), high)) return;  // read as binary
-  }
-  if (head.find('\n') != std::string::npos) return;
-  if (std::find(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), '\n') ==
-      std::istreambuf_iterator<char>())
-    fail_file(path, "unreadable STL (neither a binary STL of the size its facet count gives, nor lines of text)");
-}
-
 // STL through vcglib's importer, which makes each facet three vertices of its own: a
-// triangle soup, with no deleted elements or faux edges (cleaning welds it).
+// triangle soup, with no deleted elements or faux edges (cleaning welds it). A file it
+// takes for ASCII but holds no line of facets (all on one line, a truncated binary file
+// of zeros) gives none, and with scripts/patches/vcglib-stl-first-line.patch it no longer
+// reads such a file for ever.
 MeshFile read_stl(const std::string& path) {
-  check_stl_ends_its_first_line(path);
   TMesh m;
   int mask = 0;
   const int err = vcg::tri::io::ImporterSTL<TMesh>::Open(m, path.c_str(), mask);
   if (err != 0) fail_file(path, std::string("unreadable STL (") + vcg::tri::io::ImporterSTL<TMesh>::ErrorMsg(err) + ")");
+  if (m.face.empty())
+    fail_file(path, "unreadable STL (no facet read: neither a binary STL of the size its facet count gives, nor lines "
+                    "of text)");
   MeshFile out;
   out.positions.reserve(m.vert.size());
   for (const auto& v : m.vert) out.positions.emplace_back(v.cP()[0], v.cP()[1], v.cP()[2]);
