@@ -29,6 +29,7 @@ void describe_input(const Input& in, const std::string& name, Outcome& o) {
   o.log.push_back(name + format(": %g triangles paired into %g quads (%.2f%% paired; %g border splits)",
                                 r.input_triangles, r.quads, 100 * r.pairing_rate(),
                                 double(r.parity_splits + r.border_splits)) +
+                  (r.rim_splits ? format(", %g cone rims split", r.rim_splits) : "") +
                   (r.refined ? ", refined once" : ""));
 }
 

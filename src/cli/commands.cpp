@@ -153,9 +153,10 @@ int run_convert(const ConvertArgs& a) {
           a.crease_angle > 0 ? "; crease splits: " + std::to_string(r.crease_splits) + " parity, " +
                                    std::to_string(r.crease_midpoints) + " unmatchable"
                              : "";
-      std::printf("%s: %u triangles -> %u quads (paired %.2f%%: greedy %u, re-paired %u; border splits: %u parity, %u unmatchable%s%s), written to %s (%.2f s)\n",
+      const std::string rims = r.rim_splits ? "; cone rims split: " + std::to_string(r.rim_splits) : "";
+      std::printf("%s: %u triangles -> %u quads (paired %.2f%%: greedy %u, re-paired %u; border splits: %u parity, %u unmatchable%s%s%s), written to %s (%.2f s)\n",
                   a.input.c_str(), r.input_triangles, r.quads, 100.0 * r.pairing_rate(), r.paired_greedy,
-                  r.paired_augmented, r.parity_splits, r.border_splits, creases.c_str(),
+                  r.paired_augmented, r.parity_splits, r.border_splits, creases.c_str(), rims.c_str(),
                   r.refined ? "; refined once" : "", a.output.c_str(), s);
     }
     return kOk;

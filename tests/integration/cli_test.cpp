@@ -586,6 +586,20 @@ TEST_F(Cli, a_target_the_mesh_cannot_reach_is_reported) {
       << r.out;
 }
 
+TEST_F(Cli, a_cad_cone_keeps_a_quad_per_segment) {
+  // A cone of an odd number of segments has a rim edge split, which the log reports; it
+  // was merged down to two quads on four corners whatever the target.
+  write_tri_mesh_ply(p("cone.ply"), fixtures::cad_cone(13));
+  CliRun r = run("convert " + p("cone.ply") + " " + p("q.obj"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("28 triangles -> 14 quads"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("; cone rims split: 1)"), std::string::npos) << r.out;
+  r = run("simplify " + p("cone.ply") + " " + p("s.obj") + " --faces 7");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(read_mesh(p("s.obj")).quads.size(), 14u) << r.out;
+  EXPECT_NE(r.out.find("note: stopped at 14 quads, above the target of 7"), std::string::npos) << r.out;
+}
+
 TEST_F(Cli, automatic_halting_that_runs_out_of_collapses_says_so) {
   // Faces may not grow past F_M / 1000: every collapse is refused before any share of
   // the surface is added to what the M-fitmap blocks, so the rule never halts the run.

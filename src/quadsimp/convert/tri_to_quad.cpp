@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 
 #include "quadsimp/reference/creases.h"
 #include "quadsimp/util/errors.h"
@@ -105,6 +106,120 @@ Index fix_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj) {
     ++splits;
   }
   adj = triangle_adjacency(t);
+  return splits;
+}
+
+// Bipyramids of five or more rim vertices (a CAD cone: a fan round its tip, another round
+// its base's centre) are paired by construction: greedy pairing and the searches may
+// leave doublets (interior vertices of two quad edges) at rim vertices, and the
+// simplifier's first cleaning merges them, each merge making the next, down to two quads
+// on four corners whatever the target. A pairing removes one edge per quad, n in all, and
+// a rim vertex (four edges) keeps three only if it loses one: a rim edge costs two rim
+// vertices, so only spokes may go, one per rim vertex, alternately from the tip's fan and
+// the base's round the rim. An odd rim cannot alternate: its longest rim edge is split at
+// its midpoint first. The choices (which centre is the tip, where the rim starts, which
+// edge is split) go by position, not by the file's order. Sizes `mate` to t's triangles
+// and pairs the bipyramids' in it; returns the rim edges split. One with a crease edge is
+// left to the pairing across no crease (a cone's rim: fix_crease_parity() has made each
+// fan even).
+Index pair_bipyramids(TriMesh& t, std::vector<std::array<Index, 3>>& adj, std::vector<Index>& mate,
+                      double crease_angle_deg) {
+  const auto before = [&](Index u, Index v) {  // position order, ids for exact copies
+    const Vec3 &a = t.positions[u], &b = t.positions[v];
+    return std::tie(a.x(), a.y(), a.z(), u) < std::tie(b.x(), b.y(), b.z(), v);
+  };
+  std::vector<Index> comp;
+  const std::vector<Index> count = component_sizes(comp, face_components(adj, comp));
+  const std::vector<char> crease = crease_angle_deg > 0 ? crease_edges(t, adj, crease_angle_deg) : std::vector<char>();
+  std::vector<Index> degree(t.n_vertices(), 0);
+  for (const auto& f : t.faces)
+    for (Index v : f) ++degree[v];
+  // Per component, its two vertices of degree n (the fans' centres, the tip first), both
+  // kNone where it has another number of them; then whether every triangle holds exactly
+  // one, and the component is closed, with no crease.
+  std::vector<std::array<Index, 2>> centre(count.size(), {kNone, kNone});
+  std::vector<char> other(count.size(), 0);
+  for (Index f = 0; f < t.n_faces(); ++f) {
+    const Index n = count[comp[f]] / 2;
+    auto& c = centre[comp[f]];
+    for (Index v : t.faces[f]) {
+      if (n < 5 || degree[v] != n || c[0] == v || c[1] == v) continue;
+      if (c[0] == kNone)
+        c[0] = v;
+      else if (c[1] == kNone)
+        c[1] = v;
+      else
+        other[comp[f]] = 1;
+    }
+  }
+  for (Index f = 0; f < t.n_faces(); ++f) {
+    const auto& c = centre[comp[f]];
+    int held = 0;
+    for (Index k = 0; k < 3; ++k) {
+      other[comp[f]] |= adj[f][k] == kNone || (!crease.empty() && crease[3 * f + k]);
+      held += t.faces[f][k] == c[0] || t.faces[f][k] == c[1];
+    }
+    other[comp[f]] |= c[1] == kNone || held != 1;
+  }
+  // The tip's triangles, each with its rim edge (the one opposite the tip) as 3 * f + k.
+  std::vector<std::vector<Index>> fan(count.size());
+  for (std::size_t c = 0; c < count.size(); ++c)
+    if (!other[c] && before(centre[c][1], centre[c][0])) std::swap(centre[c][0], centre[c][1]);
+  for (Index f = 0; f < t.n_faces(); ++f)
+    for (Index k = 0; k < 3 && !other[comp[f]]; ++k)
+      if (t.faces[f][k] == centre[comp[f]][0]) fan[comp[f]].push_back(3 * f + (k + 1) % 3);
+  Index splits = 0;
+  for (auto& edges : fan) {
+    if (edges.size() % 2 == 0) continue;
+    const auto midpoint = [&](Index e) {
+      return Vec3(0.5 * (t.positions[t.faces[e / 3][e % 3]] + t.positions[t.faces[e / 3][(e % 3 + 1) % 3]]));
+    };
+    const auto length = [&](Index e) {
+      return (t.positions[t.faces[e / 3][e % 3]] - t.positions[t.faces[e / 3][(e % 3 + 1) % 3]]).norm();
+    };
+    const Index e = *std::max_element(edges.begin(), edges.end(), [&](Index x, Index y) {
+      const Vec3 mx = midpoint(x), my = midpoint(y);
+      return std::make_tuple(length(x), -mx.x(), -mx.y(), -mx.z()) <
+             std::make_tuple(length(y), -my.x(), -my.y(), -my.z());
+    });
+    const Index f = e / 3, k = e % 3, g = adj[f][k], w = t.faces[f][(k + 1) % 3];
+    Index j = 0;
+    while (t.faces[g][j] != w) ++j;
+    t.positions.push_back(midpoint(e));
+    const Index m = t.n_vertices() - 1;
+    split_triangle(t, f, k, m);  // f becomes {u, m, tip}, the new triangle {m, w, tip}
+    split_triangle(t, g, j, m);
+    *std::find(edges.begin(), edges.end(), e) = 3 * f;
+    edges.push_back(3 * (t.n_faces() - 2));
+    ++splits;
+  }
+  if (splits) adj = triangle_adjacency(t);
+  mate.assign(t.n_faces(), kNone);
+  for (const auto& edges : fan) {
+    if (edges.empty()) continue;
+    // The tip's triangles in rim order from the rim vertex first by position: each rim
+    // edge starts where the one before it ends.
+    std::vector<std::pair<Index, Index>> by_start;  // (rim edge's start, triangle)
+    for (Index e : edges) by_start.push_back({t.faces[e / 3][e % 3], e});
+    std::sort(by_start.begin(), by_start.end());
+    Index start = by_start[0].first;
+    for (const auto& s : by_start)
+      if (before(s.first, start)) start = s.first;
+    std::vector<Index> ring;  // rim edges, as 3 * f + k
+    for (Index v = start; ring.size() < edges.size();) {
+      const Index e = std::lower_bound(by_start.begin(), by_start.end(), std::pair<Index, Index>{v, 0})->second;
+      ring.push_back(e);
+      v = t.faces[e / 3][(e % 3 + 1) % 3];
+    }
+    // The tip's fan pairs across the spokes at rim vertices 1, 3, ...; the base's, each
+    // triangle across a rim edge from the tip's, across those at 2, 4, ..., 0.
+    const std::size_t n = ring.size();
+    for (std::size_t i = 0; i < n; i += 2) {
+      const Index a = ring[i] / 3, b = ring[i + 1] / 3;
+      const Index c = adj[ring[i + 1] / 3][ring[i + 1] % 3], d = adj[ring[(i + 2) % n] / 3][ring[(i + 2) % n] % 3];
+      mate[a] = b, mate[b] = a, mate[c] = d, mate[d] = c;
+    }
+  }
   return splits;
 }
 
@@ -367,6 +482,8 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
   auto adj = triangle_adjacency(t);
   r.crease_splits = fix_crease_parity(t, adj, opt.crease_angle_deg);
   r.parity_splits = fix_parity(t, adj);
+  std::vector<Index> mate;
+  r.rim_splits = pair_bipyramids(t, adj, mate, opt.crease_angle_deg);
   r.input_triangles = t.n_faces();
   // From here on no triangle is a neighbour across a crease, so none is paired there;
   // `full` keeps the neighbours across creases.
@@ -384,7 +501,7 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
   // Greedy matching, best candidate first; ties broken by ids for determinism. Its
   // candidates and normals go at the end of the block, before the searches' and the
   // blossom algorithm's memory is taken (the latter's graph sets the peak of a run).
-  std::vector<Index> mate(t.n_faces(), kNone);
+  r.paired_greedy = Index(std::count_if(mate.begin(), mate.end(), [](Index g) { return g != kNone; }));
   {
     struct Cand {
       double score;
@@ -404,35 +521,9 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
     std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) {
       return a.score > b.score || (a.score == b.score && (a.f < b.f || (a.f == b.f && a.k < b.k)));
     });
-    // A pair whose diagonal joins a fan's centre (kFan triangles or more round it) to an
-    // interior vertex it would leave with two quad edges (a doublet: its two quads share
-    // both) is left to the searches below. The simplifier's first cleaning merges
-    // doublets; round a fan, each merge makes the next one a doublet. A CAD cone (a fan
-    // round its tip, another round its base's centre) whose fans were paired with the same
-    // parity had a doublet at every other rim vertex, and was merged down to two quads on
-    // four corners. Elsewhere doublets merge where they are (the armadillo's conversion
-    // has 730): bounding every interior vertex moved the armadillo's and the gargoyle's
-    // pairings by a few triangles and their results by what any such change moves them
-    // (bench/RESULTS.md). `room`: the diagonals an interior vertex may still take before
-    // it keeps two edges; none bounds a vertex on a border (or a crease: `adj` has no
-    // neighbour across one).
-    constexpr int kFan = 10;  // a scan's or a remeshed surface's vertices have about six
-    std::vector<int> degree(t.n_vertices(), 0), room(t.n_vertices(), std::numeric_limits<int>::max());
-    std::vector<char> on_border(t.n_vertices(), 0);
-    for (Index f = 0; f < t.n_faces(); ++f)
-      for (Index k = 0; k < 3; ++k) {
-        ++degree[t.faces[f][k]];
-        if (adj[f][k] == kNone) on_border[t.faces[f][k]] = on_border[t.faces[f][(k + 1) % 3]] = 1;
-      }
-    for (Index v = 0; v < t.n_vertices(); ++v)
-      if (!on_border[v]) room[v] = degree[v] - 3;
-    const auto makes_doublet = [&](Index v, Index centre) { return room[v] <= 0 && degree[centre] >= kFan; };
     for (const Cand& c : cand) {
       const Index g = adj[c.f][c.k];
       if (mate[c.f] != kNone || mate[g] != kNone) continue;
-      const Index a = t.faces[c.f][c.k], b = t.faces[c.f][(c.k + 1) % 3];
-      if (makes_doublet(a, b) || makes_doublet(b, a)) continue;
-      --room[a], --room[b];
       mate[c.f] = g;
       mate[g] = c.f;
       r.paired_greedy += 2;

@@ -25,10 +25,13 @@ struct ConvertReport {
   Index input_triangles = 0;   //!< after the parity splits
   Index parity_splits = 0;     //!< border edges split so that every component is even
   Index crease_splits = 0;     //!< crease edges split so that every part between creases is even
+  //! Rim edges split, one per closed component that is a bipyramid of an odd number of rim
+  //! vertices (a CAD cone with its base a fan), which pairs only with doublets otherwise.
+  Index rim_splits = 0;
   //! Pairs left across a crease, where a part between creases had no pairing of its own,
   //! split at their crease edge's midpoint into two flat quads, one on either side.
   Index crease_midpoints = 0;
-  Index paired_greedy = 0;     //!< triangles paired by the greedy pass
+  Index paired_greedy = 0;     //!< triangles paired by the greedy pass (and bipyramids' by construction)
   Index paired_augmented = 0;  //!< triangles paired by re-pairing along paths
   Index paired_blossoms = 0;   //!< of those, paired by Edmonds' algorithm after the searches
   Index border_splits = 0;     //!< border edges split where no pairing existed
@@ -51,7 +54,11 @@ struct ConvertReport {
 //!    no pair is then made across a crease. Where a part has no pairing of its own even
 //!    so, its leftovers pair across creases, and each such pair is split at its crease
 //!    edge's midpoint into two quads, one on either side, flat with a straight angle there.
-//! 2. Greedy matching of adjacent triangles, best quad first (score: mean over the
+//! 2. Bipyramids of five or more rim vertices (CAD cones) are paired by construction, one
+//!    spoke of each rim vertex removed, from the tip's fan and the base's in turn; an odd
+//!    rim has its longest edge split at its midpoint first. Greedy pairing and the searches
+//!    below left doublets at rim vertices, which the simplifier merged down to two quads.
+//!    Then greedy matching of adjacent triangles, best quad first (score: mean over the
 //!    corners of 1-|cos angle|; non-convex or strongly bent pairs are not merged).
 //! 3. Each leftover triangle is paired by re-pairing along the shortest alternating
 //!    path to another leftover (TPC*10's triangle migration, as an augmenting path);
