@@ -221,6 +221,18 @@ def test_meshlabs_noisy_isosurface_comes_back_as_quads_only():
     assert is_pure_quad(ms.current_mesh())
 
 
+def test_meshlabs_own_cone_keeps_a_quad_per_segment(capfd):
+    # MeshLab's "Cone" with a top radius of 0 welds into a fan round its tip and one round
+    # its base's centre. With an odd number of segments no pairing of its triangles has no
+    # doublet, and the result was two quads whatever the target: now one rim edge is split.
+    ms = pymeshlab.MeshSet(verbose=True)
+    ms.create_cone(r0=1.0, r1=0.0, h=2.0, subdiv=13)
+    ms.meshing_quad_mesh_simplification(targetfacenum=7)
+    assert is_pure_quad(ms.current_mesh())
+    assert len(ms.current_mesh().polygonal_face_list()) == 14
+    assert "1 cone rims split" in capfd.readouterr().err
+
+
 def test_adaptive_with_automatic_halting():
     ms = pymeshlab.MeshSet()
     ms.add_mesh(open_grid(40), "grid")
