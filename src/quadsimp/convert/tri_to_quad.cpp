@@ -211,12 +211,33 @@ Index pair_bipyramids(TriMesh& t, std::vector<std::array<Index, 3>>& adj, std::v
       ring.push_back(e);
       v = t.faces[e / 3][(e % 3 + 1) % 3];
     }
-    // The tip's fan pairs across the spokes at rim vertices 1, 3, ...; the base's, each
-    // triangle across a rim edge from the tip's, across those at 2, 4, ..., 0.
+    // The tip's fan pairs across the spokes at rim vertices o + 1, o + 3, ...; the base's,
+    // each triangle across a rim edge from the tip's, across those at o + 2, o + 4, ....
+    // Of the two offsets o, the one whose quads greedy pairing would score better (fewer
+    // non-convex, then a higher sum). On an odd rim this decides which fan holds the quad
+    // with a straight angle at the split's midpoint; a fixed offset left a folded quad
+    // where this leaves a non-convex one (bench/RESULTS.md, "CAD cones paired by
+    // construction").
     const std::size_t n = ring.size();
-    for (std::size_t i = 0; i < n; i += 2) {
-      const Index a = ring[i] / 3, b = ring[i + 1] / 3;
-      const Index c = adj[ring[i + 1] / 3][ring[i + 1] % 3], d = adj[ring[(i + 2) % n] / 3][ring[(i + 2) % n] % 3];
+    const auto base_of = [&](std::size_t i) { return adj[ring[i % n] / 3][ring[i % n] % 3]; };
+    const auto quality = [&](Index f, Index g) {
+      Index k = 0;
+      while (adj[f][k] != g) ++k;
+      return quad_quality(t.positions, merged_quad(t, f, k, g));
+    };
+    std::pair<int, double> score[2] = {};  // (- non-convex quads, sum of scores) per offset
+    for (std::size_t o = 0; o < 2; ++o)
+      for (std::size_t i = o; i < n + o; i += 2)
+        for (const double q :
+             {quality(ring[i % n] / 3, ring[(i + 1) % n] / 3), quality(base_of(i + 1), base_of(i + 2))}) {
+          if (q < 0)
+            --score[o].first;
+          else
+            score[o].second += q;
+        }
+    const std::size_t o = score[1] > score[0] ? 1 : 0;
+    for (std::size_t i = o; i < n + o; i += 2) {
+      const Index a = ring[i % n] / 3, b = ring[(i + 1) % n] / 3, c = base_of(i + 1), d = base_of(i + 2);
       mate[a] = b, mate[b] = a, mate[c] = d, mate[d] = c;
     }
   }
