@@ -134,9 +134,10 @@ Index pair_bipyramids(TriMesh& t, std::vector<std::array<Index, 3>>& adj, std::v
   std::vector<Index> degree(t.n_vertices(), 0);
   for (const auto& f : t.faces)
     for (Index v : f) ++degree[v];
-  // Per component, its two vertices of degree n (the fans' centres, the tip first), both
-  // kNone where it has another number of them; then whether every triangle holds exactly
-  // one, and the component is closed, with no crease.
+  // Per component, its two vertices of degree n (the fans' centres; the "tip" below is the
+  // one first by position, whichever end of the cone it is), both kNone where it has
+  // another number of them; then whether every triangle holds exactly one, and the
+  // component is closed, with no crease.
   std::vector<std::array<Index, 2>> centre(count.size(), {kNone, kNone});
   std::vector<char> other(count.size(), 0);
   for (Index f = 0; f < t.n_faces(); ++f) {
