@@ -15,6 +15,7 @@
 #include "quadsimp/io/mesh_io.h"
 #include "quadsimp/mesh/clean.h"
 #include "quadsimp/metrics/metrics.h"
+#include "quadsimp/ops/doublet.h"
 #include "quadsimp/reference/reference_surface.h"
 #include "quadsimp/simplify/pipeline.h"
 #include "quadsimp/util/errors.h"
@@ -157,14 +158,9 @@ TEST(TriToQuad, a_noisy_sphere_pairs_every_triangle_where_the_searches_leave_som
   }
 }
 
-// Interior vertices of two quad edges.
 Index count_doublets(const QuadMesh& q) {
   Index doublets = 0;
-  for (Index v = 0; v < q.vertex_capacity(); ++v) {
-    Index valence = 0;
-    q.for_each_outgoing(v, [&](Index) { ++valence; });
-    doublets += q.is_vertex_live(v) && !q.is_border_vertex(v) && valence == 2;
-  }
+  for (Index v = 0; v < q.vertex_capacity(); ++v) doublets += is_doublet(q, v);
   return doublets;
 }
 
@@ -184,9 +180,7 @@ TEST(TriToQuad, a_cad_cones_two_fans_pair_without_doublets) {
     EXPECT_EQ(r.quads, rim);
     const QuadMesh q = tri_to_quad(t);
     EXPECT_EQ(count_doublets(q), 0u);
-    Index tip_valence = 0;
-    q.for_each_outgoing(n, [&](Index) { ++tip_valence; });
-    EXPECT_EQ(tip_valence, rim / 2);
+    EXPECT_EQ(q.valence(n), int(rim / 2));
     Input in = prepare_input(MeshFile{t.positions, t.faces, {}}, "cone");
     const ReferenceSurface ref(std::move(in.reference));
     SimplifyParams params;

@@ -25,6 +25,13 @@ std::array<Index, 4> merged_quad(const TriMesh& t, Index f, Index k, Index g) {
   return {a, d, b, c};
 }
 
+// The side k of triangle f (corner k to k + 1) whose neighbour in `adj` is g.
+Index side_towards(const std::vector<std::array<Index, 3>>& adj, Index f, Index g) {
+  Index k = 0;
+  while (adj[f][k] != g) ++k;
+  return k;
+}
+
 // Mean over the corners of 1-|cos(angle)|: 1 for a rectangle. Negative (refused)
 // when the quad is not convex in its own plane.
 double quad_quality(const std::vector<Vec3>& p, const std::array<Index, 4>& q) {
@@ -119,18 +126,20 @@ Index fix_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj) {
 // the base's round the rim. An odd rim cannot alternate: its longest rim edge is split at
 // its midpoint first. The choices (which centre is the tip, where the rim starts, which
 // edge is split) go by position, not by the file's order. Sizes `mate` to t's triangles
-// and pairs the bipyramids' in it; returns the rim edges split. One with a crease edge is
-// left to the pairing across no crease (a cone's rim: fix_crease_parity() has made each
-// fan even).
-Index pair_bipyramids(TriMesh& t, std::vector<std::array<Index, 3>>& adj, std::vector<Index>& mate,
-                      double crease_angle_deg) {
+// and pairs the bipyramids' in it; `crease` (3 per triangle, or empty) is kept up to date
+// through the splits. Returns the rim edges split. One with a crease edge is left to the
+// pairing across no crease (a cone's rim: fix_crease_parity() has made each fan even).
+Index pair_bipyramids(TriMesh& t, std::vector<std::array<Index, 3>>& adj, std::vector<char>& crease,
+                      std::vector<Index>& mate) {
   const auto before = [&](Index u, Index v) {  // position order, ids for exact copies
     const Vec3 &a = t.positions[u], &b = t.positions[v];
     return std::tie(a.x(), a.y(), a.z(), u) < std::tie(b.x(), b.y(), b.z(), v);
   };
+  const auto corner = [&](Index e, Index i) -> const Vec3& {  // of side e = 3 * f + k
+    return t.positions[t.faces[e / 3][(e % 3 + i) % 3]];
+  };
   std::vector<Index> comp;
   const std::vector<Index> count = component_sizes(comp, face_components(adj, comp));
-  const std::vector<char> crease = crease_angle_deg > 0 ? crease_edges(t, adj, crease_angle_deg) : std::vector<char>();
   std::vector<Index> degree(t.n_vertices(), 0);
   for (const auto& f : t.faces)
     for (Index v : f) ++degree[v];
@@ -172,24 +181,16 @@ Index pair_bipyramids(TriMesh& t, std::vector<std::array<Index, 3>>& adj, std::v
   Index splits = 0;
   for (auto& edges : fan) {
     if (edges.size() % 2 == 0) continue;
-    const auto midpoint = [&](Index e) {
-      return Vec3(0.5 * (t.positions[t.faces[e / 3][e % 3]] + t.positions[t.faces[e / 3][(e % 3 + 1) % 3]]));
+    const auto key = [&](Index e) {  // longest first, then the midpoint first by position
+      const Vec3 m = corner(e, 0) + corner(e, 1);
+      return std::make_tuple((corner(e, 0) - corner(e, 1)).norm(), -m.x(), -m.y(), -m.z());
     };
-    const auto length = [&](Index e) {
-      return (t.positions[t.faces[e / 3][e % 3]] - t.positions[t.faces[e / 3][(e % 3 + 1) % 3]]).norm();
-    };
-    const Index e = *std::max_element(edges.begin(), edges.end(), [&](Index x, Index y) {
-      const Vec3 mx = midpoint(x), my = midpoint(y);
-      return std::make_tuple(length(x), -mx.x(), -mx.y(), -mx.z()) <
-             std::make_tuple(length(y), -my.x(), -my.y(), -my.z());
-    });
-    const Index f = e / 3, k = e % 3, g = adj[f][k], w = t.faces[f][(k + 1) % 3];
-    Index j = 0;
-    while (t.faces[g][j] != w) ++j;
-    t.positions.push_back(midpoint(e));
+    const Index e = *std::max_element(edges.begin(), edges.end(), [&](Index x, Index y) { return key(x) < key(y); });
+    const Index f = e / 3, k = e % 3, g = adj[f][k], j = side_towards(adj, g, f);
+    t.positions.push_back(0.5 * (corner(e, 0) + corner(e, 1)));
     const Index m = t.n_vertices() - 1;
-    split_triangle(t, f, k, m);  // f becomes {u, m, tip}, the new triangle {m, w, tip}
-    split_triangle(t, g, j, m);
+    split_triangle(t, f, k, m, nullptr, &crease);  // f becomes {u, m, tip}, the new triangle {m, w, tip}
+    split_triangle(t, g, j, m, nullptr, &crease);
     *std::find(edges.begin(), edges.end(), e) = 3 * f;
     edges.push_back(3 * (t.n_faces() - 2));
     ++splits;
@@ -212,35 +213,29 @@ Index pair_bipyramids(TriMesh& t, std::vector<std::array<Index, 3>>& adj, std::v
       ring.push_back(e);
       v = t.faces[e / 3][(e % 3 + 1) % 3];
     }
-    // The tip's fan pairs across the spokes at rim vertices o + 1, o + 3, ...; the base's,
-    // each triangle across a rim edge from the tip's, across those at o + 2, o + 4, ....
-    // Of the two offsets o, the one whose quads greedy pairing would score better (fewer
-    // non-convex, then a higher sum). On an odd rim this decides which fan holds the quad
-    // with a straight angle at the split's midpoint; a fixed offset left a folded quad
-    // where this leaves a non-convex one (bench/RESULTS.md, "CAD cones paired by
-    // construction").
+    // With offset o, the tip's fan pairs across the spokes at rim vertices o + 1, o + 3,
+    // ...; the base's, each triangle across a rim edge from the tip's, across those at
+    // o + 2, o + 4, .... Of the two offsets, the one whose quads greedy pairing would score
+    // better (fewer non-convex, then a higher sum). On an odd rim this decides which fan
+    // holds the quad with a straight angle at the split's midpoint; a fixed offset left a
+    // folded quad where this leaves a non-convex one (bench/RESULTS.md, "CAD cones paired
+    // by construction").
     const std::size_t n = ring.size();
-    const auto base_of = [&](std::size_t i) { return adj[ring[i % n] / 3][ring[i % n] % 3]; };
-    const auto quality = [&](Index f, Index g) {
-      Index k = 0;
-      while (adj[f][k] != g) ++k;
-      return quad_quality(t.positions, merged_quad(t, f, k, g));
+    const auto tip_of = [&](std::size_t i) { return ring[i % n] / 3; };
+    const auto base_of = [&](std::size_t i) { return adj[tip_of(i)][ring[i % n] % 3]; };
+    const auto for_each_pair = [&](std::size_t o, const auto& visit) {
+      for (std::size_t i = o; i < n + o; i += 2) visit(tip_of(i), tip_of(i + 1)), visit(base_of(i + 1), base_of(i + 2));
     };
     std::pair<int, double> score[2] = {};  // (- non-convex quads, sum of scores) per offset
     for (std::size_t o = 0; o < 2; ++o)
-      for (std::size_t i = o; i < n + o; i += 2)
-        for (const double q :
-             {quality(ring[i % n] / 3, ring[(i + 1) % n] / 3), quality(base_of(i + 1), base_of(i + 2))}) {
-          if (q < 0)
-            --score[o].first;
-          else
-            score[o].second += q;
-        }
-    const std::size_t o = score[1] > score[0] ? 1 : 0;
-    for (std::size_t i = o; i < n + o; i += 2) {
-      const Index a = ring[i % n] / 3, b = ring[(i + 1) % n] / 3, c = base_of(i + 1), d = base_of(i + 2);
-      mate[a] = b, mate[b] = a, mate[c] = d, mate[d] = c;
-    }
+      for_each_pair(o, [&](Index f, Index g) {
+        const double q = quad_quality(t.positions, merged_quad(t, f, side_towards(adj, f, g), g));
+        if (q < 0)
+          --score[o].first;
+        else
+          score[o].second += q;
+      });
+    for_each_pair(score[1] > score[0] ? 1 : 0, [&](Index f, Index g) { mate[f] = g, mate[g] = f; });
   }
   return splits;
 }
@@ -254,11 +249,7 @@ Index pair_bipyramids(TriMesh& t, std::vector<std::array<Index, 3>>& adj, std::v
 Index fix_crease_parity(TriMesh& t, std::vector<std::array<Index, 3>>& adj, double crease_angle_deg) {
   const std::vector<char> crease = crease_edges(t, adj, crease_angle_deg);
   if (std::find(crease.begin(), crease.end(), 1) == crease.end()) return 0;
-  auto edge_to = [&](Index f, Index g) {
-    Index k = 0;
-    while (adj[f][k] != g) ++k;
-    return 3 * f + k;
-  };
+  auto edge_to = [&](Index f, Index g) { return 3 * f + side_towards(adj, f, g); };
   std::vector<Index> part, comp;
   const Index parts = face_components(adj, part, [&](Index f, Index g) { return !crease[edge_to(f, g)]; });
   const Index nc = face_components(adj, comp);
@@ -453,9 +444,7 @@ QuadMesh refine_mixed(const TriMesh& t, const std::vector<std::array<Index, 3>>&
       pos.push_back((t.positions[v[0]] + t.positions[v[1]] + t.positions[v[2]]) / 3.0);
       fan(v.data(), 3, c);
     } else if (f < g) {
-      Index k = 0;
-      while (adj[f][k] != g) ++k;
-      const auto q = merged_quad(t, f, k, g);
+      const auto q = merged_quad(t, f, side_towards(adj, f, g), g);
       // The diagonal a-b is shared by both triangles: its midpoint lies on the surface.
       const Index c = midpoint(q[0], q[2]);
       fan(q.data(), 4, c);
@@ -479,15 +468,12 @@ Index split_pairs_at_creases(TriMesh& t, const std::vector<std::array<Index, 3>>
     const Index g = mate[f];
     if (g == kNone || g < f || std::find(adj[f].begin(), adj[f].end(), g) != adj[f].end()) continue;
     const Index m = t.n_vertices();
-    Index k = 0;
-    while (full[f][k] != g) ++k;
+    const Index k = side_towards(full, f, g);
     t.positions.push_back(0.5 * (t.positions[t.faces[f][k]] + t.positions[t.faces[f][(k + 1) % 3]]));
     // Each of f and g keeps the half from its edge's start, and a new triangle takes the
     // other half and pairs with it.
     for (const Index x : {f, g}) {
-      Index j = 0;
-      while (full[x][j] != (x == f ? g : f)) ++j;
-      const Index z = split_triangle(t, x, j, m, &adj, &crease, 1);
+      const Index z = split_triangle(t, x, side_towards(full, x, x == f ? g : f), m, &adj, &crease, 1);
       mate[x] = z;
       mate.push_back(x);
     }
@@ -504,15 +490,15 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
   auto adj = triangle_adjacency(t);
   r.crease_splits = fix_crease_parity(t, adj, opt.crease_angle_deg);
   r.parity_splits = fix_parity(t, adj);
+  std::vector<char> crease;
+  if (opt.crease_angle_deg > 0) crease = crease_edges(t, adj, opt.crease_angle_deg);
   std::vector<Index> mate;
-  r.rim_splits = pair_bipyramids(t, adj, mate, opt.crease_angle_deg);
+  r.rim_splits = pair_bipyramids(t, adj, crease, mate);
   r.input_triangles = t.n_faces();
   // From here on no triangle is a neighbour across a crease, so none is paired there;
   // `full` keeps the neighbours across creases.
-  std::vector<char> crease;
   std::vector<std::array<Index, 3>> full;
   if (opt.crease_angle_deg > 0) {
-    crease = crease_edges(t, adj, opt.crease_angle_deg);
     if (std::find(crease.begin(), crease.end(), 1) == crease.end()) crease.clear();
     if (!crease.empty()) full = adj;
     for (Index f = 0; f < t.n_faces() && !crease.empty(); ++f)
@@ -634,9 +620,7 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
     for (Index f = 0; f < t.n_faces(); ++f) {
       const Index g = mate[f];
       if (f > g) continue;
-      Index k = 0;
-      while (adj[f][k] != g) ++k;
-      quads.push_back(merged_quad(t, f, k, g));
+      quads.push_back(merged_quad(t, f, side_towards(adj, f, g), g));
     }
     q = QuadMesh::from_faces(t.positions, quads);
   } else {
