@@ -11,9 +11,16 @@ namespace qs::cli {
 //! Exit codes shared by every subcommand.
 enum Exit : int { kOk = 0, kBadInput = 1, kBadArguments = 2 };
 
+//! --remesh: the input's triangles remeshed isotropically before they are converted.
+struct RemeshArgs {
+  bool on = false;
+  double edge_percent = 0;  // the edges' length in % of the bounding box's diagonal; 0: remesh_edge_length()'s
+};
+
 struct ConvertArgs {
   std::string input, output;
   double crease_angle = 0;  // SimplifyParams::crease_angle
+  RemeshArgs remesh;
   int texture_size = TextureBakeOptions().max_side;  // the quads' texture's largest side
   bool quiet = false;
 };
@@ -22,6 +29,7 @@ int run_convert(const ConvertArgs& args);
 struct SimplifyArgs {
   std::string input, output;
   SimplifyParams params;  // the options bind to its fields, so the defaults are the pipeline's
+  RemeshArgs remesh;
   int texture_size = TextureBakeOptions().max_side;  // the quads' texture's largest side
   bool stats = false, json = false, quiet = false;
   unsigned samples = 1000000;

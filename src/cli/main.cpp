@@ -40,6 +40,19 @@ void add_texture_size(CLI::App* command, int& size) {
       ->check(CLI::Range(16, 16384));
 }
 
+// --remesh, and --remesh-edge PCT with it.
+void add_remesh(CLI::App* command, qs::cli::RemeshArgs& remesh) {
+  auto* on = command->add_flag("--remesh", remesh.on,
+                               "remesh the input isotropically before converting it, as MeshLab's \"Isotropic Explicit "
+                               "Remeshing\" does (for CAD tessellations' long, thin triangles; the input stays the "
+                               "surface the quads are fitted to)");
+  command->add_option("--remesh-edge", remesh.edge_percent,
+                      "with --remesh: the edges' length in % of the bounding box's diagonal (default 1, shorter "
+                      "where --faces asks for more than about a fifth of the quads that would give)")
+      ->needs(on)
+      ->check(CLI::Range(0.01, 100.0));
+}
+
 CLI::Validator face_count_or_auto() {
   return CLI::Validator(
       [](std::string& s) -> std::string {
@@ -87,6 +100,7 @@ int main(int argc, char** argv) {
   c->add_option("IN", convert.input, "input mesh")->required()->check(CLI::ExistingFile);
   c->add_option("OUT", convert.output, "output quad mesh (.ply, .obj or .off)")->required();
   add_crease_angle(c, convert.crease_angle, "pair no triangles across edges sharper than this");
+  add_remesh(c, convert.remesh);
   add_texture_size(c, convert.texture_size);
   c->add_flag("-q,--quiet", convert.quiet, "no notes on stderr");
 
@@ -136,6 +150,7 @@ int main(int argc, char** argv) {
               "hold a vertex at each tip of the input (claws, a nose) that the smoothing would otherwise cut back, "
               "and refuse to fold quads round thin parts in uniform mode too (ours)");
   add_crease_angle(s, simp.params.crease_angle, "keep the input's edges sharper than this as edges of the quads");
+  add_remesh(s, simp.remesh);
   s->add_flag("--fast", simp.params.fast,
               "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");
   s->add_flag("--fit-to-input", simp.params.fit_to_input,

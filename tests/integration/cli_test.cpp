@@ -600,6 +600,37 @@ TEST_F(Cli, a_cad_cone_keeps_a_quad_per_segment) {
   EXPECT_NE(r.out.find("note: stopped at 14 quads, above the target of 7"), std::string::npos) << r.out;
 }
 
+TEST_F(Cli, remesh_makes_a_cad_cylinder_even_quads) {
+  // One row of long triangles round its side, fans on its caps: as it is, the quads keep
+  // the caps' poles and fold, and loading says to remesh.
+  write_tri_mesh_ply(p("cyl.ply"), fixtures::cad_cylinder(64, 1, 2.0));
+  CliRun r = run("simplify " + p("cyl.ply") + " " + p("a.obj") + " --faces 100");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("remesh first for even quads (quadsimp's --remesh;"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" folded "), std::string::npos) << r.out;
+  r = run("simplify " + p("cyl.ply") + " " + p("b.obj") + " --faces 100 --remesh --json --samples 20000");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("note: " + p("cyl.ply") + ": remeshed 256 triangles into "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("edges of 1% of the diagonal"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("long, thin"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"faces\": 100,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"folded_faces\": 0,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"max_valence\": 5,"), std::string::npos) << r.out;
+  // The distances are from the file's own surface, as `stats` measures them: the same
+  // samples on it (the other way, the quads read back are sampled in another order).
+  const std::string rms = "\"rms_from_ref_e3\": ";
+  const CliRun s = run("stats " + p("cyl.ply") + " " + p("b.obj") + " --json --samples 20000");
+  ASSERT_EQ(s.code, 0) << s.out;
+  auto rms_of = [&](const std::string& out) { return std::stod(out.substr(out.find(rms) + rms.size())); };
+  EXPECT_DOUBLE_EQ(rms_of(r.out), rms_of(s.out)) << r.out << s.out;
+  EXPECT_EQ(read_mesh(p("b.obj")).quads.size(), 100u);
+  // convert too; --remesh-edge sets the length and needs --remesh.
+  r = run("convert " + p("cyl.ply") + " " + p("c.obj") + " --remesh --remesh-edge 4");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("edges of 4% of the diagonal"), std::string::npos) << r.out;
+  EXPECT_EQ(run("convert " + p("cyl.ply") + " " + p("d.obj") + " --remesh-edge 4").code, 2);
+}
+
 TEST_F(Cli, automatic_halting_that_runs_out_of_collapses_says_so) {
   // Faces may not grow past F_M / 1000: every collapse is refused before any share of
   // the surface is added to what the M-fitmap blocks, so the rule never halts the run.

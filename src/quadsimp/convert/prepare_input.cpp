@@ -57,23 +57,30 @@ TriMesh cleaned_surface(const MeshFile& file, const std::string& name, const Log
   return t;
 }
 
-Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions& options, const LogFn& log) {
+Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions& options, const LogFn& log,
+                    const Retriangulate& retriangulate) {
   Input in;
   in.reference = cleaned_surface(file, name, log, &in.clean);
+  if (retriangulate) {
+    // Kept as cleaned_surface() gives it, so that it is measured as `quadsimp stats` does.
+    in.input_surface = std::move(in.reference);
+    in.reference = retriangulate(in.input_surface);
+    clean(in.reference, name + " (remeshed)", log);
+  }
   sort_spatially(in.reference);
-  const double thin = log ? thin_area_share(in.reference) : 0.0;
+  const double thin = log && !retriangulate ? thin_area_share(in.reference) : 0.0;
   if (thin > kThinShare)
     log(name + ": " + std::to_string(int(std::lround(100 * thin))) +
         "% of the surface is long, thin triangles (height under a tenth of the longest edge), as CAD "
         "tessellations write them: the quads made of them are long and thin too, and simplifying them leaves "
-        "vertices of high valence and stops early; remesh first for even quads (MeshLab: \"Remeshing: Isotropic "
-        "Explicit Remeshing\")");
+        "vertices of high valence and stops early; remesh first for even quads (quadsimp's --remesh; MeshLab: "
+        "\"Remeshing: Isotropic Explicit Remeshing\")");
   // Quads that cleaning had to repair (vertices merged, faces removed, vertices split, faces
   // re-oriented) no longer match the repaired triangles: an unwelded quad soup stayed 100
   // separate quads that no collapse could join, one flipped quad refused the whole file.
   // Their triangles are paired again instead, as for a triangle mesh.
   const bool repaired = in.clean.changed_faces();
-  in.was_pure_quad = file.is_pure_quad() && !repaired;
+  in.was_pure_quad = file.is_pure_quad() && !repaired && !retriangulate;
   if (file.is_pure_quad() && repaired && log)
     log(name + ": the quads needed the repairs above; their triangles are paired into quads again");
   if (file.texture_coordinates && file.texture.empty() && log)

@@ -1,6 +1,7 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "quadsimp/convert/tri_to_quad.h"
@@ -14,7 +15,8 @@ namespace qs {
 
 //! A mesh made ready for simplification.
 struct Input {
-  TriMesh reference;       //!< M0: the cleaned input triangles (quads split in two)
+  TriMesh reference;       //!< M0: the cleaned input triangles (quads split in two), or their retriangulation
+  TriMesh input_surface;   //!< with a retriangulation (prepare_input()), the cleaned input triangles
   QuadMesh quads;          //!< the pure quad mesh to simplify
   bool was_pure_quad = false;  //!< the input's quads were taken as they are
   CleanReport clean;
@@ -31,12 +33,21 @@ struct Input {
 TriMesh cleaned_surface(const MeshFile& file, const std::string& name, const LogFn& log = {},
                         CleanReport* report = nullptr);
 
+//! Triangles that replace the cleaned input's own (the CLI's --remesh, an isotropic
+//! remeshing): they are converted, and are the reference M0 the quads are fitted to. The
+//! fitting reads M0's normals interpolated from its vertices', which a coarse CAD mesh's
+//! long triangles spread across its sharp edges (a 12-sided cone's base: 9 flipped quads
+//! of 100 fitted to it, none fitted to the remeshing).
+using Retriangulate = std::function<TriMesh(const TriMesh& surface)>;
+
 //! Repairs what has a standard repair (logged through `log`) and converts triangles
 //! to quads; a pure quad mesh is taken as it is, unless cleaning repaired it: then its
 //! triangles are converted like any others. `name` prefixes every message.
-//! The CLI (from a file) and the MeshLab plugins (from a layer) both come here.
+//! The CLI (from a file) and the MeshLab plugins (from a layer) both come here. With
+//! `retriangulate`, its triangles (cleaned in turn) are the reference and are converted,
+//! even a quad mesh's.
 //! \throw InvalidInput "NAME: reason" for anything that cannot be used.
 Input prepare_input(MeshFile file, const std::string& name, const ConvertOptions& options = {},
-                    const LogFn& log = {});
+                    const LogFn& log = {}, const Retriangulate& retriangulate = {});
 
 }  // namespace qs

@@ -5,8 +5,9 @@
 
 namespace qs {
 
-Input load_input(const std::string& path, const ConvertOptions& options, const LogFn& log) {
-  return prepare_input(read_mesh(path), path, options, log);
+Input load_input(const std::string& path, const ConvertOptions& options, const LogFn& log,
+                 const Retriangulate& retriangulate) {
+  return prepare_input(read_mesh(path), path, options, log, retriangulate);
 }
 
 }  // namespace qs
