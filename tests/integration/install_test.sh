@@ -16,8 +16,8 @@ plugin=$stage/usr/lib/x86_64-linux-gnu/meshlab/plugins/libfilter_quadsimp.so
 echo "ok: $plugin"
 
 prefix=$stage/usr/local
-for f in lib/libquadsimp_core.a lib/libquadsimp_io.a lib/cmake/quadsimp/quadsimpConfig.cmake \
-         include/quadsimp/simplify/pipeline.h include/quadsimp/io/mesh_io.h; do
+for f in lib/libquadsimp_core.a lib/libquadsimp_io.a lib/libquadsimp_remesh.a lib/cmake/quadsimp/quadsimpConfig.cmake \
+         include/quadsimp/simplify/pipeline.h include/quadsimp/io/mesh_io.h include/quadsimp/remesh/isotropic_remesh.h; do
   [ -f "$prefix/$f" ] || { echo "FAIL: $f not installed"; exit 1; }
 done
 for f in text_lines.h text_readers.h atomic_file.h; do  # the readers' and writers' own helpers
@@ -32,7 +32,7 @@ if ! cmake -S "$stage/consumer" -B "$stage/consumer/build" -DCMAKE_PREFIX_PATH="
   echo "FAIL: a project using the installed package did not build"; cat "$stage"/*.log; exit 1
 fi
 python3 "$here/../../datasets/make_torus.py" "$stage/torus.ply" 48 24 >/dev/null
-for mode in uniform adaptive; do
+for mode in uniform adaptive remeshed; do
   out=$("$stage/consumer/build/simplify_file" "$stage/torus.ply" "$stage/quads.obj" 200 $mode)
   echo "$out"
   [[ $out == "200 quads,"* ]] || { echo "FAIL: the consumer's $mode run did not give 200 quads"; exit 1; }
@@ -40,4 +40,4 @@ for mode in uniform adaptive; do
 done
 out=$("$stage/consumer/build/simplify_grid" 150)
 [ "$out" = "150 quads" ] || { echo "FAIL: the core alone gave '$out', not 150 quads"; exit 1; }
-echo "ok: a CMake project finds quadsimp::io and quadsimp::core in the installed package, builds and simplifies"
+echo "ok: a CMake project finds quadsimp::io, quadsimp::remesh and quadsimp::core in the installed package, builds and simplifies"
