@@ -44,11 +44,12 @@ void add_texture_size(CLI::App* command, int& size) {
 void add_remesh(CLI::App* command, qs::cli::RemeshArgs& remesh) {
   auto* on = command->add_flag("--remesh", remesh.on,
                                "remesh the input isotropically before converting it, as MeshLab's \"Isotropic Explicit "
-                               "Remeshing\" does (for CAD tessellations' long, thin triangles; the input stays the "
-                               "surface the quads are fitted to)");
+                               "Remeshing\" does (for CAD tessellations' long, thin triangles: the quads are fitted to "
+                               "the remeshing, and distances measured from the input)");
   command->add_option("--remesh-edge", remesh.edge_percent,
                       "with --remesh: the edges' length in % of the bounding box's diagonal (default 1, shorter "
-                      "where --faces asks for more than about a fifth of the quads that would give)")
+                      "where --faces asks for more than about a fifth of the quads that would give, longer where it "
+                      "would give over 200,000 triangles)")
       ->needs(on)
       ->check(CLI::Range(0.01, 100.0));
 }
