@@ -224,7 +224,8 @@ int run_simplify(const SimplifyArgs& a) {
       // From the input as given, as `quadsimp stats` measures it, not from its remeshing. The
       // quads' orientation is still judged against the remeshing: the normals a coarse CAD
       // mesh interpolates across its sharp edges face away from its flat sides (a 33-sided
-      // cone: 35 quads "flipped" against its file, none against the remeshing).
+      // cone at automatic halting: 38 of 2,388 quads "flipped" against its file, none against
+      // the remeshing).
       std::optional<ReferenceSurface> input_ref;
       if (!in.input_surface.faces.empty()) input_ref.emplace(std::move(in.input_surface));
       const SurfaceDistance d = surface_distance(in.quads, input_ref ? *input_ref : ref, a.samples);
