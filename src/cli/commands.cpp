@@ -69,19 +69,18 @@ void print_quality(const QuadQuality& q, const SurfaceDistance* d) {
 Retriangulate remesher(const RemeshArgs& r, double crease_angle, Index target_quads, const std::string& name,
                        const LogFn& log) {
   if (!r.on) return {};
+  RemeshOptions options;
+  options.edge_share = r.edge_percent / 100;
+  options.target_quads = target_quads;
+  if (crease_angle > 0) options.feature_angle_deg = crease_angle;
   return [=](const TriMesh& surface) {
     const auto t0 = std::chrono::steady_clock::now();
-    const auto [lo, hi] = used_bbox(surface);
-    RemeshOptions options;
-    options.edge_length =
-        r.edge_percent > 0 ? r.edge_percent / 100 * (hi - lo).norm() : remesh_edge_length(surface, target_quads);
-    if (crease_angle > 0) options.feature_angle_deg = crease_angle;
     RemeshReport report;
     TriMesh out = remesh_isotropic(surface, options, &report);
     if (log) {
       char line[160];
       std::snprintf(line, sizeof line, ": remeshed %u triangles into %u, edges of %.3g%% of the diagonal (%.2f s)",
-                    report.input_triangles, report.triangles, 100 * report.edge_length / (hi - lo).norm(),
+                    report.input_triangles, report.triangles, 100 * report.edge_length / report.diagonal,
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       log(name + line);
     }

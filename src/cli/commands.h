@@ -14,7 +14,7 @@ enum Exit : int { kOk = 0, kBadInput = 1, kBadArguments = 2 };
 //! --remesh: the input's triangles remeshed isotropically before they are converted.
 struct RemeshArgs {
   bool on = false;
-  double edge_percent = 0;  // the edges' length in % of the bounding box's diagonal; 0: remesh_edge_length()'s
+  double edge_percent = 0;  // the edges' length in % of the bounding box's diagonal; 0: RemeshOptions' choice
 };
 
 struct ConvertArgs {

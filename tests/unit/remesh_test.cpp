@@ -33,13 +33,6 @@ Retriangulate remeshing() {
   return [](const TriMesh& s) { return remesh_isotropic(s); };
 }
 
-double mean_edge(const TriMesh& t) {
-  double sum = 0;
-  for (const auto& f : t.faces)
-    for (int k = 0; k < 3; ++k) sum += (t.positions[f[k]] - t.positions[f[(k + 1) % 3]]).norm();
-  return sum / (3.0 * double(t.n_faces()));
-}
-
 QuadQuality simplified(const MeshFile& file, const Retriangulate& retriangulate, Index target) {
   Input in = prepare_input(file, "cylinder", {}, {}, retriangulate);
   const ReferenceSurface ref(in.reference);
@@ -60,9 +53,10 @@ TEST(Remesh, a_cad_cylinder_becomes_even_triangles_on_its_surface_with_its_rims_
   EXPECT_EQ(report.triangles, t.n_faces());
   // 1% of the diagonal (sqrt(12)); the surface (6 pi) then holds about 36,000 triangles.
   EXPECT_NEAR(report.edge_length, 0.01 * std::sqrt(12.0), 1e-12);
+  EXPECT_NEAR(report.diagonal, std::sqrt(12.0), 1e-12);
   EXPECT_GT(t.n_faces(), 20000u);
   EXPECT_LT(t.n_faces(), 60000u);
-  EXPECT_NEAR(mean_edge(t), report.edge_length, 0.25 * report.edge_length);
+  EXPECT_NEAR(mean_edge_length(t), report.edge_length, 0.25 * report.edge_length);
   Index thin = 0, longest = 0;
   for (const auto& f : t.faces) thin += thinness(t, f, longest) < 0.1;
   EXPECT_LT(thin, t.n_faces() / 1000) << "long, thin triangles left";
@@ -97,6 +91,17 @@ TEST(Remesh, the_edge_length_follows_the_quads_asked_for) {
   EXPECT_NEAR(remesh_edge_length(cylinder, 100), 0.01 * diagonal, 1e-12);  // 1% gives plenty
   // 20,000 quads asked for: edges for four times as many.
   EXPECT_NEAR(remesh_edge_length(cylinder, 20000), std::sqrt(area / 80000), 2e-4);
+  // remesh_isotropic() takes that length for the quads it is told of, or the share given
+  // (no rounds run: the length alone is looked at).
+  RemeshOptions lengths;
+  lengths.iterations = 0;
+  lengths.target_quads = 20000;
+  RemeshReport report;
+  remesh_isotropic(cylinder, lengths, &report);
+  EXPECT_EQ(report.edge_length, remesh_edge_length(cylinder, 20000));
+  lengths.edge_share = 0.04;
+  remesh_isotropic(cylinder, lengths, &report);
+  EXPECT_NEAR(report.edge_length, 0.04 * diagonal, 1e-12);
   // A large surface in a small box: no more than about 200,000 triangles. The cylinder
   // wound a hundred times inside itself, as a stack of copies shifted by 1e-4.
   TriMesh stack;
@@ -131,9 +136,8 @@ TEST(Remesh, a_quad_meshs_triangles_are_remeshed_too) {
   // A quad mesh is taken as it is, unless asked to be remeshed.
   const QuadMesh tube = quad_tube(16, 4, true);
   MeshFile file;
-  file.positions.assign(tube.positions().begin(), tube.positions().end());
-  for (Index f = 0; f < tube.face_capacity(); ++f)
-    if (tube.is_face_live(f)) file.quads.push_back(tube.face_vertices(f));
+  file.positions = tube.positions();
+  file.quads = tube.quads();
   ASSERT_TRUE(file.is_pure_quad());
   EXPECT_TRUE(prepare_input(file, "tube").was_pure_quad);
   const Input in = prepare_input(file, "tube", {}, {}, remeshing());

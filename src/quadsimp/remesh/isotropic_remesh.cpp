@@ -31,35 +31,42 @@ void fill(RMesh& m, const TriMesh& t) {
   }
 }
 
-}  // namespace
-
-double remesh_edge_length(const TriMesh& surface, Index target_quads) {
-  const auto [lo, hi] = used_bbox(surface);
-  const double area = surface_area(surface);
+double edge_length_for(double diagonal, double area, Index target_quads) {
   // Near-equilateral triangles of edge L cover 0.433 L^2 each, pairs of them L^2 / 1.15.
   // A surface of much area in a small box (a crumpled sheet, a soup of random triangles
   // across a cube) at 1% of its diagonal took 766,070 triangles and 108 s to remesh: the
   // 1% is lengthened to keep to about 200,000.
-  double length = std::max(0.01 * (hi - lo).norm(), std::sqrt(area / (0.433 * kMostTriangles)));
+  double length = std::max(0.01 * diagonal, std::sqrt(area / (0.433 * kMostTriangles)));
   if (target_quads > 0) length = std::min(length, std::sqrt(area / (4.0 * double(target_quads))));
   return length;
 }
 
+double diagonal_of(const TriMesh& surface) {
+  const auto [lo, hi] = used_bbox(surface);
+  return (hi - lo).norm();
+}
+
+}  // namespace
+
+double remesh_edge_length(const TriMesh& surface, Index target_quads) {
+  return edge_length_for(diagonal_of(surface), surface_area(surface), target_quads);
+}
+
 TriMesh remesh_isotropic(const TriMesh& surface, const RemeshOptions& options, RemeshReport* report) {
-  const double length = options.edge_length > 0 ? options.edge_length : remesh_edge_length(surface, 0);
+  const double diagonal = diagonal_of(surface);
+  const double length = options.edge_share > 0 ? options.edge_share * diagonal
+                                               : edge_length_for(diagonal, surface_area(surface), options.target_quads);
   RMesh work, target;
   fill(work, surface);
   fill(target, surface);
-  vcg::tri::UpdateBounding<RMesh>::Box(work);
-  vcg::tri::UpdateNormal<RMesh>::PerVertexNormalizedPerFaceNormalized(work);
+  vcg::tri::UpdateNormal<RMesh>::PerVertexNormalizedPerFaceNormalized(work);  // Do() makes the boxes
   vcg::tri::IsotropicRemeshing<RMesh>::Params params;
   params.SetTargetLen(length);
   params.SetFeatureAngleDeg(options.feature_angle_deg);
   params.iter = options.iterations;
   // A local operation may move the surface by 1% of the diagonal at most, as MeshLab's
   // filter lets it by default.
-  const auto [lo, hi] = used_bbox(surface);
-  params.maxSurfDist = 0.01 * (hi - lo).norm();
+  params.maxSurfDist = 0.01 * diagonal;
   params.surfDistCheck = true;
   vcg::tri::IsotropicRemeshing<RMesh>::Do(work, target, params);
   vcg::tri::Allocator<RMesh>::CompactEveryVector(work);
@@ -71,7 +78,7 @@ TriMesh remesh_isotropic(const TriMesh& surface, const RemeshOptions& options, R
   for (const RFace& f : work.face)
     out.faces.push_back({Index(vcg::tri::Index(work, f.cV(0))), Index(vcg::tri::Index(work, f.cV(1))),
                          Index(vcg::tri::Index(work, f.cV(2)))});
-  if (report) *report = {surface.n_faces(), out.n_faces(), length};
+  if (report) *report = {surface.n_faces(), out.n_faces(), length, diagonal};
   return out;
 }
 

@@ -10,7 +10,10 @@ namespace qs {
 //! The conversion pairs the triangles it is given: CAD tessellations' long, thin ones give
 //! long, thin quads round poles of high valence (README, Limits), even ones give even quads.
 struct RemeshOptions {
-  double edge_length = 0;         //!< the edges' target length; 0: 1% of the bounding box's diagonal
+  //! The edges' target length as a share of the bounding box's diagonal; 0: chosen by
+  //! remesh_edge_length() for target_quads.
+  double edge_share = 0;
+  Index target_quads = 0;         //!< the quads the remeshing is for (0: not known)
   double feature_angle_deg = 30;  //!< edges sharper than this stay edges (MeshLab's default)
   int iterations = 10;            //!< rounds of the five operations (MeshLab's default)
 };
@@ -18,6 +21,7 @@ struct RemeshOptions {
 struct RemeshReport {
   Index input_triangles = 0, triangles = 0;
   double edge_length = 0;  //!< the target length used
+  double diagonal = 0;     //!< the surface's bounding box's
 };
 
 //! Triangles remesh_edge_length() keeps to, unless the quads asked for need more.

@@ -95,12 +95,12 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
 std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
   const auto n = [](Index x) { return std::to_string(x); };
   if (target_faces > r.initial_faces) {
+    const std::string above = "the target of " + n(target_faces) + " quads is above the " + n(r.initial_faces);
     if (r.given_faces > r.initial_faces)
-      return "the target of " + n(target_faces) + " quads is above the " + n(r.initial_faces) + " left of the " +
-             n(r.given_faces) + " the input converts to once their doublets (two quads sharing two edges) are "
-             "merged: nothing else was simplified";
-    return "the target of " + n(target_faces) + " quads is above the " + n(r.initial_faces) +
-           " the input converts to: nothing was simplified (the result is the conversion)";
+      return above + " left of the " + n(r.given_faces) +
+             " the input converts to once their doublets (two quads sharing two edges) are merged: nothing else was "
+             "simplified";
+    return above + " the input converts to: nothing was simplified (the result is the conversion)";
   }
   const auto refusals = [&] {
     return "every remaining collapse was refused (refusals over the run: " + n(r.refused_topology) +
