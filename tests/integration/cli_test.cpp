@@ -631,6 +631,30 @@ TEST_F(Cli, remesh_makes_a_cad_cylinder_even_quads) {
   EXPECT_EQ(run("convert " + p("cyl.ply") + " " + p("d.obj") + " --remesh-edge 4").code, 2);
 }
 
+TEST_F(Cli, simplifies_a_non_orientable_surface_cut_open) {
+  // A Moebius strip was refused; it is cut open across its twist on loading, and said so.
+  write_tri_mesh_ply(p("moebius.ply"), fixtures::tri_moebius(96, 8));
+  CliRun r = run("simplify " + p("moebius.ply") + " " + p("a.obj") + " --faces 150 --json --samples 20000");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("note: " + p("moebius.ply") + ": the surface is not orientable (a Moebius-like strip): cut "
+                       "open along "),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("the cut stays open, a border, in the quads"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"faces\": 150,"), std::string::npos) << r.out;
+  for (const char* none : {"\"nonconvex_faces\": 0,", "\"flipped_faces\": 0,", "\"folded_faces\": 0,"})
+    EXPECT_NE(r.out.find(none), std::string::npos) << none << "\n" << r.out;
+  EXPECT_EQ(read_mesh(p("a.obj")).quads.size(), 150u);
+  // Adaptive mode, the conversion, the fitmaps and stats load it alike.
+  for (const std::string& args :
+       {"simplify " + p("moebius.ply") + " " + p("b.ply") + " --adaptive --auto-halt",
+        "convert " + p("moebius.ply") + " " + p("c.ply"), "fitmap " + p("moebius.ply") + " " + p("d.ply"),
+        "stats " + p("moebius.ply") + " " + p("a.obj") + " --samples 20000"}) {
+    r = run(args);
+    EXPECT_EQ(r.code, 0) << args << "\n" << r.out;
+  }
+}
+
 TEST_F(Cli, automatic_halting_that_runs_out_of_collapses_says_so) {
   // Faces may not grow past F_M / 1000: every collapse is refused before any share of
   // the surface is added to what the M-fitmap blocks, so the rule never halts the run.
@@ -981,10 +1005,6 @@ TEST_F(Cli, bad_input_exits_1_and_writes_nothing) {
       write("cloud.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
                          "property float z\nend_header\n0 0 0\n1 0 0\n"),
       write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
-      // A strip of four quads closed with a half twist: the refusal a fin had before fins
-      // were repaired.
-      write("moebius.obj", "v 0 0 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 2 0 0\nv 2 1 0\nv 3 0 0\nv 3 1 0\n"
-                           "f 1 3 2\nf 2 3 4\nf 3 5 4\nf 4 5 6\nf 5 7 6\nf 6 7 8\nf 7 2 8\nf 8 2 1\n"),
       write("empty.off", ""),
       write("junk.ply", "garbage\n"),
       // vcglib's STL reader looped for ever on files without a line break that are not a

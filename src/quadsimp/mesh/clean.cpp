@@ -27,6 +27,9 @@ using detail::share_a_face;
 using detail::UnionFind;
 using detail::unfold_patches;
 
+// An undirected edge, its smaller vertex first.
+std::pair<Index, Index> edge_key(Index a, Index b) { return {std::min(a, b), std::max(a, b)}; }
+
 // True when face f walks edge a->b in that direction.
 bool has_directed(const std::array<Index, 3>& t, Index a, Index b) {
   for (int k = 0; k < 3; ++k)
@@ -381,36 +384,37 @@ void remove_faces_at_nonmanifold_edges(TriMesh& m, const CornersAround& around, 
 // Flips faces so that every manifold edge is walked in opposite directions by its
 // two faces. Per component, the orientation kept is the one most faces already had.
 // The adjacency follows the flips, so that later steps can use it.
-void orient(TriMesh& m, std::vector<std::array<Index, 3>>& adj, CleanReport& r, const std::string& src) {
+// A non-orientable component (a Moebius strip; pymeshfix's planar_mesh.ply, whose twist
+// is a few triangles wide) cannot be oriented whole: it is cut open along the edges where
+// the orientation met itself reversed, as CGAL's orient_polygon_soup() cuts, and those
+// edges are returned (each as its two vertices, in order) for split_nonmanifold_vertices()
+// to part their sides. Breadth first, so that the search meets itself reversed half way
+// round the twist, along one short line across the strip: a Moebius strip 128 quads long
+// and 8 wide is cut along 15 edges, where depth first cut it along 256, its whole length
+// (a Klein bottle 160 x 40: 80 edges against 637). Orientable components are oriented
+// the same either way (an orientation is unique up to the flip of the whole).
+std::vector<std::pair<Index, Index>> orient(TriMesh& m, std::vector<std::array<Index, 3>>& adj, CleanReport& r) {
   const Index nf = m.n_faces();
   std::vector<int> flip(nf, -1);
-  std::vector<Index> stack, members;
+  std::vector<Index> members;  // a component's faces in the order the search reached them
+  std::vector<std::pair<Index, Index>> cut;
   for (Index seed = 0; seed < nf; ++seed) {
     if (flip[seed] != -1) continue;
     flip[seed] = 0;
-    stack = {seed};
-    members.clear();
-    while (!stack.empty()) {
-      const Index f = stack.back();
-      stack.pop_back();
-      members.push_back(f);
+    members.assign(1, seed);
+    for (std::size_t next = 0; next < members.size(); ++next) {
+      const Index f = members[next];
       for (Index k = 0; k < 3; ++k) {
         const Index g = adj[f][k];
         if (g == kNone) continue;
         // f runs a -> b along this edge; g agrees with f if it runs b -> a.
         const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
-        const bool same_dir = has_directed(m.faces[g], a, b);
-        const int want = flip[f] ^ int(same_dir);
+        const int want = flip[f] ^ int(has_directed(m.faces[g], a, b));
         if (flip[g] == -1) {
           flip[g] = want;
-          stack.push_back(g);
-        } else if (flip[g] != want) {
-          // Where: a user can select round that point in MeshLab and delete or mend it.
-          const Vec3 at = 0.5 * (m.positions[a] + m.positions[b]);
-          char where[96];
-          std::snprintf(where, sizeof where, "%.6g, %.6g, %.6g", at.x(), at.y(), at.z());
-          throw InvalidInput(src + ": the surface is not orientable (a Moebius-like strip; its two sides meet at "
-                             "the edge whose middle is at " + where + ")");
+          members.push_back(g);
+        } else if (flip[g] != want && f < g) {  // each such edge once
+          cut.push_back(edge_key(a, b));
         }
       }
     }
@@ -425,11 +429,22 @@ void orient(TriMesh& m, std::vector<std::array<Index, 3>>& adj, CleanReport& r, 
       }
     }
   }
+  // Cut edges become border edges of both their faces.
+  std::sort(cut.begin(), cut.end());
+  auto is_cut = [&](Index a, Index b) { return std::binary_search(cut.begin(), cut.end(), edge_key(a, b)); };
+  if (!cut.empty())
+    for (Index f = 0; f < nf; ++f)
+      for (Index k = 0; k < 3; ++k)
+        if (adj[f][k] != kNone && is_cut(m.faces[f][k], m.faces[f][(k + 1) % 3])) adj[f][k] = kNone;
+  r.cut_edges = Index(cut.size());
+  return cut;
 }
 
 // A vertex whose triangles form several fans (joined only at the vertex) gets one
-// copy per extra fan; afterwards every vertex is a disc or half-disc.
-void split_nonmanifold_vertices(TriMesh& m, CleanReport& r) {
+// copy per extra fan; afterwards every vertex is a disc or half-disc. Fans are not
+// joined across `cut` edges (orient()): a vertex on a cut gets a copy for its other
+// side, counted apart from the non-manifold ones.
+void split_nonmanifold_vertices(TriMesh& m, const std::vector<std::pair<Index, Index>>& cut, CleanReport& r) {
   const Index nv = m.n_vertices();
   const CornersAround around = corners_around(m);
   const auto& start = around.start;
@@ -441,10 +456,16 @@ void split_nonmanifold_vertices(TriMesh& m, CleanReport& r) {
     if (n < 2) continue;
     UnionFind uf(n);
     spokes.clear();
+    bool on_cut = false;
     for (Index i = 0; i < n; ++i) {
       const Index f = corner[b + i] / 3, k = corner[b + i] % 3;
-      spokes.push_back({m.faces[f][(k + 1) % 3], i});
-      spokes.push_back({m.faces[f][(k + 2) % 3], i});
+      for (Index x : {m.faces[f][(k + 1) % 3], m.faces[f][(k + 2) % 3]}) {
+        if (!cut.empty() && std::binary_search(cut.begin(), cut.end(), edge_key(v, x))) {
+          on_cut = true;
+          continue;
+        }
+        spokes.push_back({x, i});
+      }
     }
     std::sort(spokes.begin(), spokes.end());
     for (std::size_t s = 1; s < spokes.size(); ++s)
@@ -456,7 +477,7 @@ void split_nonmanifold_vertices(TriMesh& m, CleanReport& r) {
       if (copy_of_root[root] == kNone) {
         copy_of_root[root] = Index(m.positions.size());
         m.positions.push_back(m.positions[v]);
-        ++r.split_nonmanifold_vertices;
+        ++(on_cut ? r.cut_vertices : r.split_nonmanifold_vertices);
       }
       const Index f = corner[b + i] / 3, k = corner[b + i] % 3;
       m.faces[f][k] = copy_of_root[root];
@@ -529,6 +550,8 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, const Cl
   remove_degenerate_and_duplicate_faces(m, r);
   if (m.faces.empty()) throw InvalidInput(src + ": every face is degenerate (zero area)");
   std::vector<std::array<Index, 3>> adj;
+  std::vector<std::pair<Index, Index>> cut;
+  std::string cut_at;
   {
     // adjacency_from() finds a non-manifold edge as it goes; the repair runs only for a
     // mesh that has one, on the same corners.
@@ -549,9 +572,16 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, const Cl
       adj = manifold_adjacency();
     }
     if ((r.zipped_t_junctions = zip_cracks(m, adj))) adj = manifold_adjacency();
-    orient(m, adj, r, src);
+    cut = orient(m, adj, r);
   }
-  split_nonmanifold_vertices(m, r);  // faces keep their neighbours
+  if (!cut.empty()) {
+    // Where: a user can select round that point in MeshLab and delete or mend it.
+    const Vec3 at = 0.5 * (m.positions[cut.front().first] + m.positions[cut.front().second]);
+    char where[96];
+    std::snprintf(where, sizeof where, "%.6g, %.6g, %.6g", at.x(), at.y(), at.z());
+    cut_at = where;
+  }
+  split_nonmanifold_vertices(m, cut, r);  // faces keep their neighbours
   std::vector<Vec3> normals = unit_normals(m);  // for both mends
   r.flipped_edges = mend_by_edge_flips(m, adj, normals);
   unfold_patches(m, adj, normals, options, diagonal, r);
@@ -576,6 +606,10 @@ CleanReport clean(TriMesh& m, const std::string& src, const LogFn& log, const Cl
     note(r.removed_unreferenced_vertices, "unreferenced vertices removed");
     note(r.split_nonmanifold_vertices, "non-manifold vertices split");
     note(r.flipped_faces, "faces re-oriented to match their neighbours");
+    if (r.cut_edges)
+      log(src + ": the surface is not orientable (a Moebius-like strip): cut open along " +
+          std::to_string(r.cut_edges) + " edges, where its two sides meet (one with its middle at " + cut_at +
+          "); the cut stays open, a border, in the quads");
     note(r.flipped_edges,
          "edges flipped to mend caps (triangles whose height is under 1e-3 of their longest edge) and "
          "single triangles folded back onto their neighbours");

@@ -21,6 +21,9 @@ struct CleanReport {
   Index removed_unreferenced_vertices = 0;
   Index split_nonmanifold_vertices = 0;
   Index flipped_faces = 0;     //!< faces re-oriented to agree with their component
+  //! A non-orientable surface cut open: the edges cut, and the vertices copied for their
+  //! other side.
+  Index cut_edges = 0, cut_vertices = 0;
   Index flipped_edges = 0;     //!< edges flipped to mend caps and single folded-back triangles
   Index unfolded_patches = 0;  //!< small patches folded back (folded_patches()), laid flat
   Index moved_vertices = 0;    //!< the vertices moved to lay them flat
@@ -34,7 +37,7 @@ struct CleanReport {
   bool changed_faces() const {
     return merged_duplicate_vertices + merged_close_vertices + zipped_t_junctions + removed_degenerate_faces +
                removed_duplicate_faces + removed_nonmanifold_faces + split_nonmanifold_vertices + flipped_faces +
-               flipped_edges + moved_vertices > 0;
+               cut_edges + flipped_edges + moved_vertices > 0;
   }
 };
 
@@ -61,7 +64,8 @@ struct CleanOptions {
 //! with a repeated vertex or zero area removed, duplicate faces removed, at an edge with
 //! more than two triangles all removed but the two across which the surface runs on straightest,
 //! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
-//! re-oriented consistently within each component, caps (height under 1e-3 of the
+//! re-oriented consistently within each component (a non-orientable one cut open along
+//! the edges where its orientation meets itself reversed, their vertices copied), caps (height under 1e-3 of the
 //! longest edge) and single triangles folded back onto their neighbours mended by
 //! flipping an edge, small patches folded back (folded_patches()) laid flat by moving
 //! their vertices, and if need be up to eight rings of vertices around them while the
@@ -71,7 +75,7 @@ struct CleanOptions {
 //! \throw std::invalid_argument if options.longest_fold_move is negative or NaN.
 //! \throw InvalidInput for: no vertices, no faces (point cloud), NaN/Inf coordinates,
 //!        out-of-range indices, a size outside 1e-30 to 1e30 across (the faces' bounding
-//!        box), a non-orientable component. `what` is one sentence;
+//!        box). `what` is one sentence;
 //!        `source` (a file name) prefixes it.
 CleanReport clean(TriMesh& mesh, const std::string& source = "mesh", const LogFn& log = {},
                   const CleanOptions& options = {});
