@@ -9,6 +9,7 @@
 #    and MeshLab reads the CLI's PLY as its quads;
 #  - a point cloud makes the filter fail with our message, without crashing MeshLab;
 #  - a fin on an edge (three triangles on it) is removed, and MeshLab's log says so;
+#  - a Moebius strip is cut open and simplified, and the log says so;
 #  - a strip of triangles folded back onto a grid is laid flat, and the log says so;
 #  - the quads come out as polygonal layers that MeshLab's polygon filters accept;
 #  - MeshLab's own quads (its smart triangle pairing) are simplified;
@@ -248,6 +249,41 @@ if simplified_with_repair fin "1 faces removed at edges shared by more than two 
           python3 -c "import json,sys; s=json.load(sys.stdin); print(s['faces'] if s['max_to_ref_e3'] < 1 else 'off the plane')") ||
     fail "fin: the result is not a valid pure quad mesh"
   [ "${faces:-0}" = 1 ] && echo "ok: fin removed, 1 quad" || fail "fin: ${faces:-no} quads, not 1 on the plane"
+fi
+
+# A Moebius strip (96 x 8 quads, split) is not orientable: loading cuts it open across its
+# twist, the log says so, and the result is a valid pure quad mesh of the script's target.
+python3 - "$work/moebius.ply" <<'PY'
+import math, sys
+along, across = 96, 8
+points, faces = [], []
+for i in range(along):
+    u = 2 * math.pi * i / along
+    for j in range(across + 1):
+        s = 0.6 * j / across - 0.3
+        points.append(((1 + s * math.cos(u / 2)) * math.cos(u), (1 + s * math.cos(u / 2)) * math.sin(u),
+                       s * math.sin(u / 2)))
+vid = lambda i, j: i * (across + 1) + j if i < along else across - j  # row `along` is row 0 turned over
+for i in range(along):
+    for j in range(across):
+        faces += [(vid(i, j), vid(i + 1, j), vid(i, j + 1)), (vid(i, j + 1), vid(i + 1, j), vid(i + 1, j + 1))]
+with open(sys.argv[1], "w") as f:
+    f.write("ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\n"
+            "element face %d\nproperty list uchar int vertex_indices\nend_header\n" % (len(points), len(faces)))
+    f.writelines("%.7f %.7f %.7f\n" % p for p in points)
+    f.writelines("3 %d %d %d\n" % t for t in faces)
+PY
+sed 's/name="TargetFaceNum" type="RichInt" value="[0-9]*"/name="TargetFaceNum" type="RichInt" value="150"/' \
+  "$script" >"$work/moebius.mlx"
+if ! server -i "$work/moebius.ply" -o "$work/moebius_out.ply" -m ff -s "$work/moebius.mlx"; then
+  fail "meshlabserver failed on the Moebius strip"; cat "$work/server.log"
+else
+  grep -q "the surface is not orientable (a Moebius-like strip): cut open along" "$work/server.log" ||
+    { fail "moebius: the cut is not in MeshLab's log"; cat "$work/server.log"; }
+  faces=$("$cli" stats "$work/moebius.ply" "$work/moebius_out.ply" --json --samples 1000 |
+    python3 -c "import json,sys; print(json.load(sys.stdin)['faces'])") ||
+    fail "moebius: the result is not a valid pure quad mesh"
+  [ "${faces:-0}" = 150 ] && echo "ok: Moebius strip cut open, $faces quads" || fail "moebius: ${faces:-no} quads, not 150"
 fi
 
 # A strip of triangles folded back onto a 128 x 128 grid (five vertices in a column
