@@ -447,7 +447,7 @@ std::vector<std::pair<Index, Index>> orient(TriMesh& m, std::vector<std::array<I
       }
       for (Index f : members)
         for (Index k = 0; k < 3; ++k)
-          if (f < adj[f][k] && adj[f][k] != kNone && disagree(f, k))
+          if (adj[f][k] != kNone && f < adj[f][k] && disagree(f, k))
             cut.push_back(edge_key(m.faces[f][k], m.faces[f][(k + 1) % 3]));
     }
     Index flipped = 0;
