@@ -283,7 +283,8 @@ else
   faces=$("$cli" stats "$work/moebius.ply" "$work/moebius_out.ply" --json --samples 1000 |
     python3 -c "import json,sys; print(json.load(sys.stdin)['faces'])") ||
     fail "moebius: the result is not a valid pure quad mesh"
-  [ "${faces:-0}" = 150 ] && echo "ok: Moebius strip cut open, $faces quads" || fail "moebius: ${faces:-no} quads, not 150"
+  [ "${faces:-0}" = 150 ] && echo "ok: Moebius strip cut open, $faces quads" ||
+    fail "moebius: ${faces:-no} quads, not 150"
 fi
 
 # A strip of triangles folded back onto a 128 x 128 grid (five vertices in a column

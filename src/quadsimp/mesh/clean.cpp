@@ -29,6 +29,10 @@ using detail::unfold_patches;
 
 // An undirected edge, its smaller vertex first.
 std::pair<Index, Index> edge_key(Index a, Index b) { return {std::min(a, b), std::max(a, b)}; }
+// Whether the edge a-b is among `edges` (edge_key()s, sorted).
+bool is_among(const std::vector<std::pair<Index, Index>>& edges, Index a, Index b) {
+  return !edges.empty() && std::binary_search(edges.begin(), edges.end(), edge_key(a, b));
+}
 
 // True when face f walks edge a->b in that direction.
 bool has_directed(const std::array<Index, 3>& t, Index a, Index b) {
@@ -463,11 +467,10 @@ std::vector<std::pair<Index, Index>> orient(TriMesh& m, std::vector<std::array<I
   }
   // Cut edges become border edges of both their faces.
   std::sort(cut.begin(), cut.end());
-  auto is_cut = [&](Index a, Index b) { return std::binary_search(cut.begin(), cut.end(), edge_key(a, b)); };
   if (!cut.empty())
     for (Index f = 0; f < nf; ++f)
       for (Index k = 0; k < 3; ++k)
-        if (adj[f][k] != kNone && is_cut(m.faces[f][k], m.faces[f][(k + 1) % 3])) adj[f][k] = kNone;
+        if (adj[f][k] != kNone && is_among(cut, m.faces[f][k], m.faces[f][(k + 1) % 3])) adj[f][k] = kNone;
   r.cut_edges = Index(cut.size());
   return cut;
 }
@@ -492,7 +495,7 @@ void split_nonmanifold_vertices(TriMesh& m, const std::vector<std::pair<Index, I
     for (Index i = 0; i < n; ++i) {
       const Index f = corner[b + i] / 3, k = corner[b + i] % 3;
       for (Index x : {m.faces[f][(k + 1) % 3], m.faces[f][(k + 2) % 3]}) {
-        if (!cut.empty() && std::binary_search(cut.begin(), cut.end(), edge_key(v, x))) {
+        if (is_among(cut, v, x)) {
           on_cut = true;
           continue;
         }

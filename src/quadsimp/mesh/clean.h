@@ -65,8 +65,8 @@ struct CleanOptions {
 //! more than two triangles all removed but the two across which the surface runs on straightest,
 //! unreferenced vertices removed, non-manifold vertices split (one copy per fan), faces
 //! re-oriented consistently within each component (a non-orientable one cut open along
-//! the edges where its orientation meets itself reversed, their vertices copied), caps (height under 1e-3 of the
-//! longest edge) and single triangles folded back onto their neighbours mended by
+//! the edges where its orientation meets itself reversed, their vertices copied), caps
+//! (height under 1e-3 of the longest edge) and single triangles folded back onto their neighbours mended by
 //! flipping an edge, small patches folded back (folded_patches()) laid flat by moving
 //! their vertices, and if need be up to eight rings of vertices around them while the
 //! region faces the way the patch's own surroundings do (not those on the border). Only patches that are discs
