@@ -17,7 +17,6 @@
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/io/mesh_io.h"
 #include "quadsimp/mesh/mesh_file.h"
-#include "quadsimp/mesh/tri_topology.h"
 #include "quadsimp/util/errors.h"
 
 using namespace qs;
@@ -240,19 +239,14 @@ Index border_loops(const TriMesh& t) {
   return loops;
 }
 
-Index edge_count(const TriMesh& t) {
-  std::set<std::pair<Index, Index>> edges;
-  for (const auto& f : t.faces)
-    for (int k = 0; k < 3; ++k) edges.insert(std::minmax(f[k], f[(k + 1) % 3]));
-  return Index(edges.size());
+// Euler's characteristic V - E + F (each edge once, from vertex_rings()).
+int euler_characteristic(const TriMesh& t) {
+  return int(t.n_vertices()) - int(vertex_rings(t).next.size() / 2) + int(t.n_faces());
 }
 
 Index components(const TriMesh& t) {
-  detail::UnionFind uf(t.n_vertices());
-  for (const auto& f : t.faces) uf.unite(f[0], f[1]), uf.unite(f[1], f[2]);
-  std::set<Index> roots;
-  for (const auto& f : t.faces) roots.insert(uf.find(f[0]));
-  return Index(roots.size());
+  std::vector<Index> component;
+  return face_components(triangle_adjacency(t), component);
 }
 
 // The note's point "with its middle at x, y, z" is the middle of an edge of `t`.
@@ -282,7 +276,7 @@ TEST(Clean, cuts_a_moebius_strip_open_across_its_twist) {
   expect_edge_manifold_and_oriented(t);
   EXPECT_EQ(components(t), 1u);
   EXPECT_EQ(border_loops(t), 1u);
-  EXPECT_EQ(int(t.n_vertices()) - int(edge_count(t)) + int(t.n_faces()), 1);  // a disc
+  EXPECT_EQ(euler_characteristic(t), 1);  // a disc
   // Straight across the 6 quads, along their edges, its 7 vertices each copied once
   // (depth first, the orientation's search cut it along 64 edges, the whole loop; not
   // straightened, the search's zigzag of 11).
@@ -309,7 +303,7 @@ TEST(Clean, cuts_a_klein_bottle_open_round_its_tube) {
   expect_edge_manifold_and_oriented(t);
   EXPECT_EQ(components(t), 1u);
   EXPECT_EQ(border_loops(t), 2u);
-  EXPECT_EQ(int(t.n_vertices()) - int(edge_count(t)) + int(t.n_faces()), 0);
+  EXPECT_EQ(euler_characteristic(t), 0);
   EXPECT_EQ(r.cut_edges, 16u);  // once round the tube's 16 quads
   EXPECT_EQ(r.cut_vertices, 16u);
   EXPECT_EQ(triangle_set(t), triangle_set(before));

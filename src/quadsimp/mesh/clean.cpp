@@ -449,10 +449,15 @@ std::vector<std::pair<Index, Index>> orient(TriMesh& m, std::vector<std::array<I
         for (Index k = 0; k < 3; ++k)
           if (adj[f][k] != kNone) work.push_back(adj[f][k]);
       }
+      // Cut edges become border edges of both their faces.
       for (Index f : members)
-        for (Index k = 0; k < 3; ++k)
-          if (adj[f][k] != kNone && f < adj[f][k] && disagree(f, k))
-            cut.push_back(edge_key(m.faces[f][k], m.faces[f][(k + 1) % 3]));
+        for (Index k = 0; k < 3; ++k) {
+          const Index g = adj[f][k];
+          if (g == kNone || g < f || !disagree(f, k)) continue;
+          cut.push_back(edge_key(m.faces[f][k], m.faces[f][(k + 1) % 3]));
+          adj[f][k] = kNone;
+          for (Index& x : adj[g]) x = x == f ? kNone : x;
+        }
     }
     Index flipped = 0;
     for (Index f : members) flipped += Index(flip[f]);
@@ -465,12 +470,7 @@ std::vector<std::pair<Index, Index>> orient(TriMesh& m, std::vector<std::array<I
       }
     }
   }
-  // Cut edges become border edges of both their faces.
-  std::sort(cut.begin(), cut.end());
-  if (!cut.empty())
-    for (Index f = 0; f < nf; ++f)
-      for (Index k = 0; k < 3; ++k)
-        if (adj[f][k] != kNone && is_among(cut, m.faces[f][k], m.faces[f][(k + 1) % 3])) adj[f][k] = kNone;
+  std::sort(cut.begin(), cut.end());  // for is_among()
   r.cut_edges = Index(cut.size());
   return cut;
 }
