@@ -9,6 +9,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -342,6 +346,46 @@ TEST(PluginParams, the_dialogs_defaults_are_the_clis) {
   std::set<std::string> declared;
   for (const ParamSpec& s : params_of(kSimplify)) declared.insert(s.key);
   EXPECT_EQ(list.read(), declared);
+}
+
+// What a user reads must be what the filters take: the README's filter table names every
+// filter and each one's parameters, its pymeshlab section every parameter's lowercased
+// name (it once lacked `creaseangle` and `samplenum`), and its meshlabserver script is
+// the example the meshlabserver test runs, with every parameter (2020.09 stops on a
+// script that lacks one).
+TEST(PluginParams, the_readme_names_every_filter_and_parameter) {
+  const auto read = [](const std::string& path) {
+    std::ifstream in(path);
+    EXPECT_TRUE(in) << path;
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string readme = read(QS_SOURCE_DIR "/README.md");
+  const auto section = [&](const std::string& heading) {
+    const std::size_t at = readme.find("\n## " + heading);
+    EXPECT_NE(at, std::string::npos) << heading;
+    return at == std::string::npos ? std::string() : readme.substr(at, readme.find("\n## ", at + 1) - at);
+  };
+  const std::string meshlab = section("MeshLab 2020.09"), python = section("pymeshlab 2025.7");
+  for (const FilterSpec& f : filter_specs()) {
+    const std::size_t row = meshlab.find(std::string("\n| ") + f.name + " |");
+    ASSERT_NE(row, std::string::npos) << f.name;
+    const std::string line = meshlab.substr(row + 1, meshlab.find('\n', row + 1) - row - 1);
+    EXPECT_NE(line.find(std::string("`") + f.python_name + "`"), std::string::npos) << line;
+    for (const ParamSpec& p : params_of(f.id)) {
+      const std::size_t at = line.find(p.key), end = at + std::strlen(p.key);
+      EXPECT_TRUE(at != std::string::npos && line[at - 1] == ' ' && !std::isalnum(static_cast<unsigned char>(line[end])))
+          << p.key << " in " << line;
+      std::string lower = p.key;
+      std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+      EXPECT_TRUE(python.find("`" + lower + "`") != std::string::npos ||
+                  python.find("(" + lower + "=") != std::string::npos)  // in an example's call
+          << lower;
+    }
+  }
+  const std::string script = read(QS_SOURCE_DIR "/plugin/meshlab2020/examples/quad_simplification.mlx");
+  EXPECT_NE(meshlab.find("```xml\n" + script + "```"), std::string::npos) << "the README's script is not the example's";
+  for (const ParamSpec& p : params_of(kSimplify))
+    EXPECT_NE(script.find(std::string("<Param name=\"") + p.key + "\""), std::string::npos) << p.key;
 }
 
 TEST(PluginParams, each_parameter_reaches_its_own_field) {
