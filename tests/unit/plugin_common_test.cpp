@@ -373,8 +373,9 @@ TEST(PluginParams, the_readme_names_every_filter_and_parameter) {
     EXPECT_NE(line.find(std::string("`") + f.python_name + "`"), std::string::npos) << line;
     for (const ParamSpec& p : params_of(f.id)) {
       const std::size_t at = line.find(p.key), end = at + std::strlen(p.key);
-      EXPECT_TRUE(at != std::string::npos && line[at - 1] == ' ' && !std::isalnum(static_cast<unsigned char>(line[end])))
-          << p.key << " in " << line;
+      const bool word = at != std::string::npos && line[at - 1] == ' ' &&
+                        !std::isalnum(static_cast<unsigned char>(line[end]));
+      EXPECT_TRUE(word) << p.key << " in " << line;
       std::string lower = p.key;
       std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
       EXPECT_TRUE(python.find("`" + lower + "`") != std::string::npos ||
