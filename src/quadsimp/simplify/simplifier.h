@@ -53,6 +53,20 @@ class Simplifier {
   SimplifyReport run();
 
  private:
+  // run()'s three parts (simplify.cpp).
+  void set_up();
+  bool collapse_all();
+  void finish(bool halted);
+  // Automatic halting's schedule in collapse_all(): the blocked share is measured when the
+  // faces come down to next_scan (or, above the predicted range, to next_early).
+  struct HaltingSchedule {
+    bool on = false;
+    Index next_scan = 0, next_early = 0;
+    double base_share = 0;  // blocked before any collapse: not counted towards the halt
+  };
+  bool halting_due(HaltingSchedule& h);
+  void upkeep(Index& next_mu);
+
   // The loop: the heap and its keys, the collapse checks, automatic halting, and what
   // follows each change (simplify.cpp).
   void rebuild_heap();

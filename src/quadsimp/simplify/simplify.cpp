@@ -538,6 +538,17 @@ SimplifyReport Simplifier::run() {
   if (opt_.adaptive && (!opt_.fitmaps || opt_.fitmaps->s.size() != ref_.mesh().n_vertices() ||
                         opt_.fitmaps->m.size() != ref_.mesh().n_vertices()))
     throw std::invalid_argument("simplify: adaptive mode needs fitmaps computed on the reference surface");
+  set_up();
+  const bool halted = collapse_all();
+  finish(halted);
+  rep_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (opt_.progress && !rep_.cancelled) opt_.progress(1.f, "simplify");
+  return rep_;
+}
+
+// The first cleaning, the per-vertex state, feet on M0, mu, the initial smoothing, the
+// pieces' shares of the target and the heap.
+void Simplifier::set_up() {
   // Crease vertices are known before the first cleaning, which must keep their doublets.
   held_.assign(m_.vertex_capacity(), 0);
   mark_creases();
@@ -600,7 +611,11 @@ SimplifyReport Simplifier::run() {
   counted_faces_ = m_.n_faces();
   share_target(piece_area);
   rebuild_heap();
+}
 
+// Diagonal collapses from the heap until the target (or automatic halting), then chords
+// and crease doublets while they let more pass. Returns whether automatic halting stopped it.
+bool Simplifier::collapse_all() {
   const Index target = opt_.target_faces;
   if (opt_.fine_phase > 0) {
     // Automatic halting has no target: the predicted count stands in for it, times a
@@ -614,10 +629,10 @@ SimplifyReport Simplifier::run() {
       fine_above_ = opt_.fine_phase * kMargin * rep_.predicted_faces;
   }
   // Automatic halting measures the blocked share (the paper's rule, halt_share 1, runs
-  // until nothing is left instead); `next_scan` is the face count of the next measure.
-  const bool measure = target == 0 && opt_.adaptive && opt_.halt_share < 1;
-  bool halted = false;
-  Index next_scan = std::isfinite(fine_above_) ? Index(std::min(fine_above_, double(m_.n_faces()))) : m_.n_faces();
+  // until nothing is left instead).
+  HaltingSchedule halting;
+  halting.on = target == 0 && opt_.adaptive && opt_.halt_share < 1;
+  halting.next_scan = std::isfinite(fine_above_) ? Index(std::min(fine_above_, double(m_.n_faces()))) : m_.n_faces();
   // The prediction can be far below where the run halts: where nothing faces away from
   // its fitted planes (a height field, a range scan) F_M is the largest radius everywhere
   // and the prediction a few faces, so neither the measure nor the full passes would start
@@ -626,15 +641,15 @@ SimplifyReport Simplifier::run() {
   // scans and height fields"). A measure at every halving of the faces above the
   // predicted range brings both forward once the share is half way to the halt; it only
   // reads, so where the prediction holds the run is the same.
-  Index next_early = measure && m_.n_faces() / 2 > next_scan ? m_.n_faces() / 2 : 0;
+  halting.next_early = halting.on && m_.n_faces() / 2 > halting.next_scan ? m_.n_faces() / 2 : 0;
   // Where the input's own faces already reach F_M (a thin rim, noise) nothing will ever
   // coarsen; only what the collapses add counts towards the halt. A pancake's rim was
   // blocked over more than 15% of its area from the start, and it stopped after one
   // collapse (bench/RESULTS.md).
-  const double base_share = measure ? blocked_share() : 0.0;
+  halting.base_share = halting.on ? blocked_share() : 0.0;
   const Index span = rep_.initial_faces > target ? rep_.initial_faces - target : 1;
   Index next_mu = 0;
-  // Diagonal collapses; once none is left above the target, chords (collapse_chords()).
+  bool halted = false;
   for (;;) {
     while (m_.n_faces() > target && !heap_.empty()) {
       std::pop_heap(heap_.begin(), heap_.end(), LaterFirst{});
@@ -651,34 +666,10 @@ SimplifyReport Simplifier::run() {
         continue;
       }
       cycle(e.face, e.k, pos, foot);
-      if (measure && m_.n_faces() <= std::max(next_scan, next_early)) {
-        rep_.blocked_share = blocked_share();
-        const double added = rep_.blocked_share - base_share;
-        // Above the predicted range: the schedule starts here once the share is half way
-        // to the halt; until then the next halving is measured.
-        if (m_.n_faces() > next_scan && added >= 0.5 * opt_.halt_share) fine_above_ = double(next_scan = m_.n_faces());
-        next_early = m_.n_faces() / 2 > next_scan ? m_.n_faces() / 2 : 0;
-        if (m_.n_faces() <= next_scan) {
-          // The share grows smoothly as the faces grow: measured again after a step of the
-          // faces that shrinks to 1% as it nears the halting share (about 15 measures a run).
-          if ((halted = added >= opt_.halt_share)) break;
-          const double step = std::clamp(0.25 * (1 - added / opt_.halt_share), 0.01, 0.25);
-          next_scan = Index(double(m_.n_faces()) * (1 - step));
-        }
-      }
-      if (has_border_ && opt_.coarsen_border && !opt_.preserve_boundary && rep_.collapses % 64 == 0)
-        coarsen_border();
-      if (!crease_.empty() && rep_.collapses % 64 == 0) coarsen_creases();
-      if (rep_.collapses >= next_mu) {
-        // mu drifts slowly: an exact recount every 256 collapses is cheaper than tracking every
-        // edge each operation touches, and as accurate, if it comes after at least 2% of the
-        // faces (mu moves ~1%) and at most a tenth (~5%). Without that upper bound a 900-quad
-        // grid simplified to 50 left mu far behind: the border (coarsened below 1.3 mu) kept
-        // most of its edges, the target was missed at 70 quads, and quads spanned the grid.
-        update_mu();
-        next_mu = rep_.collapses + std::clamp<Index>(256, m_.n_faces() / 50, std::max<Index>(1, m_.n_faces() / 10));
-      }
-      if (heap_.size() > 16 * std::size_t(m_.n_faces()) + 1024) rebuild_heap();
+      if (halting.on && m_.n_faces() <= std::max(halting.next_scan, halting.next_early) &&
+          (halted = halting_due(halting)))
+        break;
+      upkeep(next_mu);
       if (opt_.progress && rep_.collapses % 256 == 0) {
         // Without a target (automatic halting) the end is unknown: report the share of
         // faces removed, which only grows.
@@ -693,10 +684,51 @@ SimplifyReport Simplifier::run() {
     if (!crease_.empty() && !halted && !rep_.cancelled && m_.n_faces() > target && coarsen_creases()) continue;
     if (!opt_.chord_collapses || target == 0 || m_.n_faces() <= target || rep_.cancelled || !collapse_chords()) break;
   }
+  rep_.ran_out = halting.on && !halted && !rep_.cancelled;
+  return halted;
+}
+
+// Automatic halting's measure, at a face count its schedule has reached: true when the
+// faces the M-fitmap blocks have grown by the halting share.
+bool Simplifier::halting_due(HaltingSchedule& h) {
+  rep_.blocked_share = blocked_share();
+  const double added = rep_.blocked_share - h.base_share;
+  // Above the predicted range: the schedule starts here once the share is half way to the
+  // halt; until then the next halving is measured.
+  if (m_.n_faces() > h.next_scan && added >= 0.5 * opt_.halt_share) fine_above_ = double(h.next_scan = m_.n_faces());
+  h.next_early = m_.n_faces() / 2 > h.next_scan ? m_.n_faces() / 2 : 0;
+  if (m_.n_faces() > h.next_scan) return false;
+  if (added >= opt_.halt_share) return true;
+  // The share grows smoothly as the faces grow: measured again after a step of the faces
+  // that shrinks to 1% as it nears the halting share (about 15 measures a run).
+  const double step = std::clamp(0.25 * (1 - added / opt_.halt_share), 0.01, 0.25);
+  h.next_scan = Index(double(m_.n_faces()) * (1 - step));
+  return false;
+}
+
+// What the loop does every so many collapses: border and crease coarsening, mu's recount
+// and the heap's rebuild.
+void Simplifier::upkeep(Index& next_mu) {
+  if (has_border_ && opt_.coarsen_border && !opt_.preserve_boundary && rep_.collapses % 64 == 0) coarsen_border();
+  if (!crease_.empty() && rep_.collapses % 64 == 0) coarsen_creases();
+  if (rep_.collapses >= next_mu) {
+    // mu drifts slowly: an exact recount every 256 collapses is cheaper than tracking every
+    // edge each operation touches, and as accurate, if it comes after at least 2% of the
+    // faces (mu moves ~1%) and at most a tenth (~5%). Without that upper bound a 900-quad
+    // grid simplified to 50 left mu far behind: the border (coarsened below 1.3 mu) kept
+    // most of its edges, the target was missed at 70 quads, and quads spanned the grid.
+    update_mu();
+    next_mu = rep_.collapses + std::clamp<Index>(256, m_.n_faces() / 50, std::max<Index>(1, m_.n_faces() / 10));
+  }
+  if (heap_.size() > 16 * std::size_t(m_.n_faces()) + 1024) rebuild_heap();
+}
+
+// After the loop: the pieces above their share, the last measures, the unfolding (uniform
+// mode), the border's inset, and the report's counts.
+void Simplifier::finish(bool halted) {
   for (std::size_t c = 0; c < share_.size(); ++c)
     if (double(piece_faces_[c]) > share_[c]) ++rep_.pieces_above_share, rep_.faces_above_share += piece_faces_[c];
   if (opt_.adaptive && !halted) rep_.blocked_share = blocked_share();
-  rep_.ran_out = measure && !halted && !rep_.cancelled;
   if (opt_.unfold && !opt_.refuse_folds && !rep_.cancelled) unfold();
   // Last: the unfolding smooths, and a border vertex the inset has moved off M0's border
   // no longer slides along it. When the inset came first, bunny.ply with 0.1% of its
@@ -711,9 +743,6 @@ SimplifyReport Simplifier::run() {
   }
   m_.compact();
   rep_.faces = m_.n_faces();
-  rep_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (opt_.progress && !rep_.cancelled) opt_.progress(1.f, "simplify");
-  return rep_;
 }
 
 }  // namespace detail
