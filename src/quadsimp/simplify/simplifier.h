@@ -31,17 +31,20 @@ inline constexpr char kHeldTip = 1, kHeldCorner = 2;
 
 // One candidate collapse: diagonal k (corners k, k+2) of `face`, valid while the
 // face's version is unchanged (lazy invalidation).
+// A heap entry: diagonal k of a face, at the face's version when it was keyed. The face
+// and k share one word (2 face + k), which orders entries by face, then k, as two fields
+// would: 12 bytes instead of 16, for the heap that takes a tenth of a large run's time.
 struct Entry {
   float key;
-  Index face;
+  std::uint32_t slot;
   std::uint32_t version;
-  std::uint32_t k;
+  Index face() const { return slot >> 1; }
+  Index k() const { return slot & 1; }
 };
 struct LaterFirst {  // makes std::*_heap a min-heap, ties broken by ids
   bool operator()(const Entry& a, const Entry& b) const {
     if (a.key != b.key) return a.key > b.key;
-    if (a.face != b.face) return a.face > b.face;
-    return a.k > b.k;
+    return a.slot > b.slot;
   }
 };
 

@@ -155,7 +155,7 @@ void Simplifier::append_entries(Index f) {
     const double length = anisotropy_.empty()
                               ? norm_of_diagonal(m_, f, k)
                               : std::sqrt(length2_under(g, m_.position(c[k]) - m_.position(c[k + 2])));
-    heap_.push_back({float(length * scale), f, version_[f], k});
+    heap_.push_back({float(length * scale), 2 * f + k, version_[f]});
   }
 }
 
@@ -558,6 +558,8 @@ void Simplifier::set_up() {
   rep_.singlets += initial.singlets;
   rep_.target_faces = opt_.target_faces;
   rep_.initial_faces = m_.n_faces();
+  if (m_.face_capacity() > (Index(1) << 31))  // heap entries hold 2 face + k in 32 bits (Entry)
+    throw std::length_error("simplify: over 2^31 quads");
   version_.assign(m_.face_capacity(), 0);
   face_mark_.assign(m_.face_capacity(), 0);
   vertex_mark_.assign(m_.vertex_capacity(), 0);
@@ -655,17 +657,18 @@ bool Simplifier::collapse_all() {
       std::pop_heap(heap_.begin(), heap_.end(), LaterFirst{});
       const Entry e = heap_.back();
       heap_.pop_back();
-      if (!m_.is_face_live(e.face) || e.version != version_[e.face]) continue;
-      if (piece_room(m_.vertex(e.face, 0)) <= 0) continue;  // its piece has its share (share_target())
+      const Index f = e.face(), k = e.k();
+      if (!m_.is_face_live(f) || e.version != version_[f]) continue;
+      if (piece_room(m_.vertex(f, 0)) <= 0) continue;  // its piece has its share (share_target())
       Vec3 pos;
       SurfacePoint foot;
       // A refused face comes back only when something around it changes.
-      const Verdict verdict = check_collapse(e.face, e.k, pos, foot, Bound::Loop);
+      const Verdict verdict = check_collapse(f, k, pos, foot, Bound::Loop);
       if (verdict != Verdict::Ok) {
         count_refusal(verdict);
         continue;
       }
-      cycle(e.face, e.k, pos, foot);
+      cycle(f, k, pos, foot);
       if (halting.on && m_.n_faces() <= std::max(halting.next_scan, halting.next_early) &&
           (halted = halting_due(halting)))
         break;
