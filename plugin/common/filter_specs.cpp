@@ -21,7 +21,8 @@ const std::vector<FilterSpec>& filter_specs() {
        "first paired into quads; then, one diagonal collapse at a time, the mesh is coarsened, with edge "
        "rotations that favour valence 4, doublet and singlet removal, and tangent-space smoothing that keeps "
        "every vertex on the input surface; where no diagonal collapse is left above the target, whole chords "
-       "of quads are collapsed (a strip one quad wide loses one quad at a time). <br><b>Uniform</b> mode collapses the shortest diagonal first and "
+       "of quads are collapsed (a strip one quad wide loses one quad at a time). <br><b>Uniform</b> mode collapses the "
+       "shortest diagonal first and "
        "stops at the target number of faces. <b>Adaptive</b> mode weights diagonals by the S-fitmap (small "
        "faces where the surface is curved), refuses collapses that would make a face larger than the M-fitmap "
        "allows or leave parts of a large face without the input along its normal within the reach (4.5% of the "
@@ -31,14 +32,16 @@ const std::vector<FilterSpec>& filter_specs() {
        "angle</b> keeps the input's edges sharper than it (a machined part's) as edges of the quads, and their "
        "corners in place. <b>Fit "
        "vertices to the input</b> then moves the vertices off the input, along "
-       "their normals, so that the quads lie closer to it. <br>The result goes to a new layer; the input layer is not changed. "
+       "their normals, so that the quads lie closer to it. <br>The result goes to a new layer; the input layer is not "
+       "changed. "
        "The quads take the input layer's vertex colours, if it has any, interpolated at each vertex's closest "
        "point on it (as <i>Vertex Attribute Transfer</i> does), its face colours, each quad the colour of the "
        "face closest to its centre, and its texture, baked into a texture of the quads' own (a tile for each quad; "
        "MeshLab 2020.09 writes it beside the input's file, as its own texture filters do); other attributes are "
        "not carried over. Quads are stored "
        "the MeshLab way, as triangle pairs with a faux shared edge: save as PLY with per-face flags, or as OBJ/OFF "
-       "with polygons, to keep them." + kCitation},
+       "with polygons, to keep them." +
+           kCitation},
       {kConvert, "Convert to Pure Quad Mesh", "meshing_tri_to_pure_quad",
        "Turns a triangle mesh into a <b>pure quad mesh</b> without moving any vertex: triangles are paired "
        "greedily into the best-shaped quads, every leftover is re-paired along the shortest alternating path, "
@@ -56,11 +59,13 @@ const std::vector<FilterSpec>& filter_specs() {
        "vertex) and the <b>M-fitmap</b> (the largest radius around each vertex where a plane still faces the "
        "same way as the surface, up to a tolerance tau) on the current mesh. Both are stored as per-vertex "
        "attributes <i>FitmapS</i> and <i>FitmapM</i>; S is also copied to the vertex quality (use "
-       "<i>Colorize by vertex quality</i> to see it)." + kCitation},
+       "<i>Colorize by vertex quality</i> to see it)." +
+           kCitation},
       {kQuality, "Quad Mesh Quality", "get_quad_mesh_quality_measures",
        "Measures a pure quad mesh: face and vertex counts, maximum valence, share of regular vertices (valence "
        "4 inside, 3 on the border), homeometry (edge length / mean edge and diagonal / (sqrt(2) mean edge), ideal "
-       "1), non-convex faces, faces bent by more than 90 degrees whichever diagonal splits them, and its distance to a reference layer (symmetric Hausdorff and RMS, and the "
+       "1), non-convex faces, faces bent by more than 90 degrees whichever diagonal splits them, and its distance to a "
+       "reference layer (symmetric Hausdorff and RMS, and the "
        "one-sided mean from the quads to the reference, in units of 1e-3 of the reference's bounding-box "
        "diagonal). The values are printed in the log and returned."},
   };
@@ -93,7 +98,8 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "the halting share of the surface (the paper runs until none is allowed, which coarsens the rest far past "
        "its error balance). Where every remaining collapse is refused first (a noisy scan, a small mesh), it "
        "stops there, and the log says so."},
-      {kSimplify, "HaltShare", "Halting share (automatic halting)", ParamKind::Float, SimplifyParams().halt_share, 0.001, 1,
+      {kSimplify, "HaltShare", "Halting share (automatic halting)", ParamKind::Float, SimplifyParams().halt_share,
+       0.001, 1,
        "Automatic halting: the share of the surface the M-fitmap may block, beyond what it blocked before the "
        "first collapse, before simplification stops (0.15: the gargoyle's and armadillo's scans stop within 2% "
        "of the paper's counts, the bunny's 20% above). Smaller stops earlier, with more quads; 1 runs until no "

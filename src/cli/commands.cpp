@@ -180,10 +180,12 @@ int run_convert(const ConvertArgs& a) {
                                    std::to_string(r.crease_midpoints) + " unmatchable"
                              : "";
       const std::string rims = r.rim_splits ? "; cone rims split: " + std::to_string(r.rim_splits) : "";
-      std::printf("%s: %u triangles -> %u quads (paired %.2f%%: greedy %u, re-paired %u; border splits: %u parity, %u unmatchable%s%s%s), written to %s (%.2f s)\n",
-                  a.input.c_str(), r.input_triangles, r.quads, 100.0 * r.pairing_rate(), r.paired_greedy,
-                  r.paired_augmented, r.parity_splits, r.border_splits, creases.c_str(), rims.c_str(),
-                  r.refined ? "; refined once" : "", a.output.c_str(), s);
+      std::printf(
+          "%s: %u triangles -> %u quads (paired %.2f%%: greedy %u, re-paired %u; border splits: %u parity, %u "
+          "unmatchable%s%s%s), written to %s (%.2f s)\n",
+          a.input.c_str(), r.input_triangles, r.quads, 100.0 * r.pairing_rate(), r.paired_greedy, r.paired_augmented,
+          r.parity_splits, r.border_splits, creases.c_str(), rims.c_str(), r.refined ? "; refined once" : "",
+          a.output.c_str(), s);
     }
     return kOk;
   } catch (const InvalidInput& e) {
@@ -234,20 +236,18 @@ int run_simplify(const SimplifyArgs& a) {
         char share[32], seconds[32];
         std::snprintf(share, sizeof share, "%.4f", r.blocked_share);
         std::snprintf(seconds, sizeof seconds, "%.4f", s);
-        const std::string extra = std::string(", \"seconds\": ") + seconds + ", \"collapses\": " + n(r.collapses) +
-                                  ", \"border_collapses\": " + n(r.border_collapses) +
-                                  ", \"border_insets\": " + n(r.border_insets) + ", \"tips\": " + n(r.tips) +
-                                  ", \"chord_collapses\": " + n(r.chord_collapses) + ", \"rotations\": " + n(r.rotations) +
-                                  ", \"crease_collapses\": " + n(r.crease_collapses) +
-                                  ", \"crease_vertices\": " + n(r.crease_vertices) +
-                                  ", \"unfolds\": " + n(r.unfolds) + ", \"converted_faces\": " + n(converted) +
-                                  ", \"input_faces\": " + n(r.initial_faces) +
-                                  ", \"target_faces\": " + n(r.target_faces) +
-                                  ", \"refused\": {\"topology\": " + n(r.refused_topology) +
-                                  ", \"valence\": " + n(r.refused_valence) + ", \"geometry\": " + n(r.refused_geometry) +
-                                  ", \"fitmap\": " + n(r.refused_fitmap) + ", \"reach\": " + n(r.refused_reach) +
-                                  "}, \"blocked_share\": " + share +
-                                  ", \"predicted_faces\": " + n(Index(std::lround(r.predicted_faces))) + "}";
+        const std::string extra =
+            std::string(", \"seconds\": ") + seconds + ", \"collapses\": " + n(r.collapses) +
+            ", \"border_collapses\": " + n(r.border_collapses) + ", \"border_insets\": " + n(r.border_insets) +
+            ", \"tips\": " + n(r.tips) + ", \"chord_collapses\": " + n(r.chord_collapses) +
+            ", \"rotations\": " + n(r.rotations) + ", \"crease_collapses\": " + n(r.crease_collapses) +
+            ", \"crease_vertices\": " + n(r.crease_vertices) + ", \"unfolds\": " + n(r.unfolds) +
+            ", \"converted_faces\": " + n(converted) + ", \"input_faces\": " + n(r.initial_faces) +
+            ", \"target_faces\": " + n(r.target_faces) + ", \"refused\": {\"topology\": " + n(r.refused_topology) +
+            ", \"valence\": " + n(r.refused_valence) + ", \"geometry\": " + n(r.refused_geometry) +
+            ", \"fitmap\": " + n(r.refused_fitmap) + ", \"reach\": " + n(r.refused_reach) +
+            "}, \"blocked_share\": " + share + ", \"predicted_faces\": " + n(Index(std::lround(r.predicted_faces))) +
+            "}";
         j.pop_back();
         std::printf("%s%s\n", j.c_str(), extra.c_str());
         return kOk;

@@ -107,7 +107,9 @@ int main(int argc, char** argv) {
 
   SimplifyArgs simp;
   auto* s = app.add_subcommand("simplify", "Simplify a triangle or quad mesh into a coarser pure quad mesh");
-  s->add_option("IN", simp.input, "input mesh (PLY, OBJ, OFF, STL; triangles or quads)")->required()->check(CLI::ExistingFile);
+  s->add_option("IN", simp.input, "input mesh (PLY, OBJ, OFF, STL; triangles or quads)")
+      ->required()
+      ->check(CLI::ExistingFile);
   s->add_option("OUT", simp.output, "output quad mesh (.ply, .obj or .off)")->required();
   s->add_option_function<std::string>(
        "-f,--faces", [&simp](const std::string& v) { parse_face_target(v, &simp.params); },
@@ -115,9 +117,10 @@ int main(int argc, char** argv) {
       ->type_name("N|P%")
       ->check(CLI::Validator([](std::string& v) { return parse_face_target(v, nullptr); }, ""));
   s->add_flag("--adaptive", simp.params.adaptive, "adaptive mode driven by fitmaps");
-  s->add_flag("--auto-halt", simp.params.auto_halt,
-              "adaptive: stop once the faces whose collapses the M-fitmap (or --reach) refuses cover --halt-share of the "
-              "surface");
+  s->add_flag(
+      "--auto-halt", simp.params.auto_halt,
+      "adaptive: stop once the faces whose collapses the M-fitmap (or --reach) refuses cover --halt-share of the "
+      "surface");
   s->add_option("--tau", simp.params.tau, "adaptive: M-fitmap tolerance (share of inconsistent area)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
@@ -131,7 +134,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
   s->add_option("--halt-share", simp.params.halt_share,
-                "auto-halt: share of the surface the M-fitmap may block before stopping (1: until no feasible collapse remains, the paper's rule)")
+                "auto-halt: share of the surface the M-fitmap may block before stopping (1: until no feasible collapse "
+                "remains, the paper's rule)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   s->add_option("--max-aspect", simp.params.max_aspect,
@@ -154,8 +158,9 @@ int main(int argc, char** argv) {
   add_remesh(s, simp.remesh);
   s->add_flag("--fast", simp.params.fast,
               "one rotation/smoothing pass per collapse (the paper's loop): about 20% faster, less regular");
-  s->add_flag("--fit-to-input", simp.params.fit_to_input,
-              "afterwards, move the vertices along their normals, off the input, to lower the distance both ways (ours)");
+  s->add_flag(
+      "--fit-to-input", simp.params.fit_to_input,
+      "afterwards, move the vertices along their normals, off the input, to lower the distance both ways (ours)");
   add_texture_size(s, simp.texture_size);
   s->add_flag("--stats", simp.stats, "print quality and distance metrics of the result");
   s->add_flag("--json", simp.json, "print the result's metrics (and the time) as one JSON object");
@@ -165,10 +170,13 @@ int main(int argc, char** argv) {
   s->add_flag("-q,--quiet", simp.quiet, "no progress bar and no notes");
 
   FitmapArgs fit;
-  auto* fm = app.add_subcommand("fitmap", "Compute the S and M fitmaps of a mesh and write them as per-vertex PLY properties");
+  auto* fm =
+      app.add_subcommand("fitmap", "Compute the S and M fitmaps of a mesh and write them as per-vertex PLY properties");
   fm->add_option("IN", fit.input, "input mesh")->required()->check(CLI::ExistingFile);
   fm->add_option("OUT", fit.output, "output .ply (fitmap_s, fitmap_m per vertex; S as colour)")->required();
-  fm->add_option("--tau", fit.tau, "M-fitmap tolerance (share of inconsistent area)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  fm->add_option("--tau", fit.tau, "M-fitmap tolerance (share of inconsistent area)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   fm->add_option("--tips", fit.tips_at,
                  "also mark the tips that simplify's --keep-tips holds at N quads, or with auto where simplify "
                  "--adaptive --auto-halt is predicted to stop (per-vertex tip: 1 at each)")
@@ -193,7 +201,9 @@ int main(int argc, char** argv) {
   st->add_option("REF", stats.reference, "reference (input) mesh")->required()->check(CLI::ExistingFile);
   st->add_option("QUAD", stats.quads, "quad mesh to measure")->required()->check(CLI::ExistingFile);
   st->add_flag("--json", stats.json, "one JSON object on stdout");
-  st->add_option("--samples", stats.samples, "distance samples per surface")->capture_default_str()->check(whole_number_from_one());
+  st->add_option("--samples", stats.samples, "distance samples per surface")
+      ->capture_default_str()
+      ->check(whole_number_from_one());
 
   try {
     app.parse(argc, argv);

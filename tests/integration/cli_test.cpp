@@ -231,10 +231,9 @@ TEST_F(Cli, face_colours_reach_the_quads) {
 }
 
 // A texture (an OBJ's or a PLY's) reaches OBJ and PLY quads as one of their own: a tile
-// per quad, each texel the input's texture under it. On a sphere mapped by longitude and height (a seam where the longitude
-// wraps), with an image whose red is the longitude and green the height, the texel at
-// each quad's middle has the colour of the point of the sphere under it. OFF takes no
-// texture, and says so.
+// per quad, each texel the input's texture under it. On a sphere mapped by longitude and height (a seam where the
+// longitude wraps), with an image whose red is the longitude and green the height, the texel at each quad's middle has
+// the colour of the point of the sphere under it. OFF takes no texture, and says so.
 TEST_F(Cli, a_texture_reaches_obj_and_ply_quads) {
   const TriMesh sphere = fixtures::tri_sphere(24, 32);
   const auto lon_lat = [](const Vec3& p) {
@@ -448,9 +447,11 @@ TEST_F(Cli, bad_arguments_exit_2) {
            {"simplify " + input_ + " " + p("o.ply") + " --faces 0%", "--faces: '0%' is not a share above 0%"},
            {"simplify " + input_ + " " + p("o.ply") + " --adaptive",
             "the adaptive mode needs a target number of faces or automatic halting"},
-           {"simplify " + input_ + " " + p("o.ply") + " --faces 100.5%", "'100.5%' is not a share above 0% and at most 100%"},
+           {"simplify " + input_ + " " + p("o.ply") + " --faces 100.5%",
+            "'100.5%' is not a share above 0% and at most 100%"},
            {"simplify " + input_ + " " + p("o.ply") + " --faces ten%", "--faces: 'ten%' is not a share"},
-           {"simplify " + input_ + " " + p("o.ply") + " --faces 10 --m-factor 0", "--m-factor: '0' is not a number above 0"},
+           {"simplify " + input_ + " " + p("o.ply") + " --faces 10 --m-factor 0",
+            "--m-factor: '0' is not a number above 0"},
            {"stats " + input_ + " " + input_ + " --samples 0", "--samples: '0' is not a whole number from 1"}}) {
     const CliRun r = run(args);
     EXPECT_EQ(r.code, 2) << args;
@@ -564,7 +565,8 @@ TEST_F(Cli, a_target_the_mesh_cannot_reach_is_reported) {
   CliRun r = run("simplify " + grid + " " + p("g.ply") + " --faces 4 --preserve-boundary");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("note: stopped at "), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("quads, above the target of 4: every remaining collapse was refused"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("quads, above the target of 4: every remaining collapse was refused"), std::string::npos)
+      << r.out;
   r = run("simplify " + grid + " " + p("g.ply") + " --faces 4 --preserve-boundary -q");
   EXPECT_EQ(r.out.find("above the target"), std::string::npos) << r.out;
   r = run("simplify " + input_ + " " + p("s.ply") + " --faces 60");

@@ -955,7 +955,8 @@ namespace {
 // each is tried and put back, or not tried.
 void expect_tried_and_put_back(const TriMesh& mesh, Index patches) {
   std::vector<Index> patch;
-  ASSERT_EQ(folded_patches(mesh, triangle_adjacency(mesh), unit_normals(mesh), patch, kLaidFlatShare, kLaidFlatCos), patches)
+  ASSERT_EQ(folded_patches(mesh, triangle_adjacency(mesh), unit_normals(mesh), patch, kLaidFlatShare, kLaidFlatCos),
+            patches)
       << "the case is no longer tried";
   TriMesh t = mesh;
   const CleanReport r = clean(t);

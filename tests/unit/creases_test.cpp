@@ -76,7 +76,8 @@ template <class On>
       missing += !whole && !halves;
     }
   if (seen == 0) return ::testing::AssertionFailure() << "no crease edge in the input";
-  if (missing > 0) return ::testing::AssertionFailure() << missing << " of " << seen << " crease edges are no quad edges";
+  if (missing > 0)
+    return ::testing::AssertionFailure() << missing << " of " << seen << " crease edges are no quad edges";
   return ::testing::AssertionSuccess();
 }
 

@@ -54,7 +54,8 @@ std::string ply_header(int nv, int nf, const std::string& face_extra = "") {
 // OBJ vertex lines for rows of "x y z\n".
 std::string obj_vertices(const std::string& rows) {
   std::string obj;
-  for (std::size_t b = 0, e; (e = rows.find('\n', b)) != std::string::npos; b = e + 1) obj += "v " + rows.substr(b, e - b + 1);
+  for (std::size_t b = 0, e; (e = rows.find('\n', b)) != std::string::npos; b = e + 1)
+    obj += "v " + rows.substr(b, e - b + 1);
   return obj;
 }
 
@@ -150,7 +151,8 @@ TEST_F(MeshIo, vertex_colours_round_trip_every_output_format) {
   const std::string off = "COFF\n3 1 0\n0 0 0 255 0 0\n1 0 0\n0 1 0 0 0 255\n3 0 1 2\n";
   EXPECT_TRUE(read_mesh(write("part.off", off)).colours.empty());
   // One field with a decimal point makes them all fractions: "1 0.5 0" is orange.
-  const MeshFile mixed = read_mesh(write("mixed.off", "COFF\n3 1 0\n0 0 0 1 0.5 0\n1 0 0 1 2 3\n0 1 0 1 2 3\n3 0 1 2\n"));
+  const MeshFile mixed =
+      read_mesh(write("mixed.off", "COFF\n3 1 0\n0 0 0 1 0.5 0\n1 0 0 1 2 3\n0 1 0 1 2 3\n3 0 1 2\n"));
   ASSERT_EQ(mixed.colours.size(), 3u);
   EXPECT_EQ(mixed.colours[0], (Colour{255, 128, 0, 255}));
   EXPECT_EQ(mixed.colours[1], (Colour{1, 2, 3, 255}));
@@ -402,8 +404,9 @@ TEST_F(MeshIo, ply_textures_are_read_with_their_images) {
   ASSERT_EQ(c.texture.image, (std::vector<int>{0, 0, -1}));
   ASSERT_EQ(c.texture.colours.size(), 3u);
   EXPECT_EQ(c.texture.colours[2], (Colour{200, 10, 20, 255}));
-  EXPECT_TRUE(read_mesh(write("-1.ply", header(two, "", corners) + square + quad + "0\n3 1 4 2 6 1 0 0.5 0.25 1 1 -1\n"))
-                  .texture.empty());
+  EXPECT_TRUE(
+      read_mesh(write("-1.ply", header(two, "", corners) + square + quad + "0\n3 1 4 2 6 1 0 0.5 0.25 1 1 -1\n"))
+          .texture.empty());
   EXPECT_TRUE(read_mesh(write("-1.ply", header(two, "", corners + rgb) + square + quad + "-1 9 9 9\n" +
                                             "3 1 4 2 6 1 0 0.5 0.25 1 1 -1 200 10 20\n"))
                   .texture.empty());
@@ -464,7 +467,8 @@ TEST_F(MeshIo, every_format_keeps_every_bit_of_tiny_and_far_coordinates) {
   // its PLY and OFF writers 16 significant digits (one short of a double's 17).
   for (const double scale : {1e-12, 1.0, 1e8}) {
     QuadMesh m = grid_with_hole(4);
-    for (auto& p : const_cast<std::vector<Vec3>&>(m.positions())) p = scale * (p + Vec3(std::sqrt(2.0), 0.1, p.x() / 3));
+    for (auto& p : const_cast<std::vector<Vec3>&>(m.positions()))
+      p = scale * (p + Vec3(std::sqrt(2.0), 0.1, p.x() / 3));
     for (const char* ext : {"obj", "ply", "off"}) {
       SCOPED_TRACE(std::to_string(scale) + " " + ext);
       const std::string file = path(std::string("tiny.") + ext);
@@ -571,7 +575,8 @@ TEST_F(MeshIo, polygons_of_five_corners_in_every_format) {
     for (const auto& t : f.triangles) {
       const int pentagon = t[0] / 5;
       for (Index c : t) EXPECT_EQ(int(c) / 5, pentagon);
-      area[pentagon] += 0.5 * (f.positions[t[1]] - f.positions[t[0]]).cross(f.positions[t[2]] - f.positions[t[0]]).norm();
+      area[pentagon] +=
+          0.5 * (f.positions[t[1]] - f.positions[t[0]]).cross(f.positions[t[2]] - f.positions[t[0]]).norm();
     }
     EXPECT_NEAR(area[0], 1.5, 1e-9);
     EXPECT_NEAR(area[1], 1.5, 1e-9);
@@ -666,7 +671,8 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
   // A coordinate that is not a number (vcglib's OBJ and OFF readers took it for 0).
   EXPECT_NE(error_of(write("word.obj", "v 0 0 0\nv 1 0 0\nv abc 1 0\nf 1 2 3\n")).find("line 3: 'abc' is not a number"),
             std::string::npos);
-  EXPECT_NE(error_of(write("word.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0.5x\n3 0 1 2\n")).find("line 5: '0.5x' is not a number"),
+  EXPECT_NE(error_of(write("word.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0.5x\n3 0 1 2\n"))
+                .find("line 5: '0.5x' is not a number"),
             std::string::npos);
 
   // Truncated binary PLY.
@@ -681,7 +687,8 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
   EXPECT_FALSE(error_of(bad_index).empty());
   // ... in a quad, which vcglib splits without checking (it crashed).
   const std::string bad_quad = write("idxq.ply", ply_header(4, 1) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 7\n");
-  EXPECT_NE(error_of(bad_quad).find("unreadable PLY (a face corner 7 names no vertex (the file has 4))"), std::string::npos);
+  EXPECT_NE(error_of(bad_quad).find("unreadable PLY (a face corner 7 names no vertex (the file has 4))"),
+            std::string::npos);
 
   // Corners naming no vertex: vcglib's readers look them up unchecked (all crashed).
   const std::string square = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
@@ -717,17 +724,21 @@ TEST_F(MeshIo, bad_files_give_one_clear_error) {
       {write("flat.off", "OFF\n4 1 0\n0 0\n"), "line 3: a vertex needs three coordinates"},
       {write("huge.ply", "ply\nformat ascii 1.0\nelement vertex 300000000\nproperty float x\nend_header\n0\n"),
        "unreadable PLY (its header counts 300000000 'vertex' elements in 2 bytes of data)"},
-      {write("strips.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                           "element tristrips 300000000\nproperty list int int vertex_indices\nend_header\n"
-                           "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+      {write("strips.ply",
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+             "element tristrips 300000000\nproperty list int int vertex_indices\nend_header\n"
+             "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
        "unreadable PLY (its header counts 300000000 'tristrips' elements in"},
       {write("nocount.ply", "ply\nformat ascii 1.0\nelement vertex\nproperty float x\nend_header\n0\n"),
        "unreadable PLY (element 'vertex' has no count)"},
   };
-  for (const auto& [file, message] : cases) EXPECT_NE(error_of(file).find(message), std::string::npos) << error_of(file);
+  for (const auto& [file, message] : cases)
+    EXPECT_NE(error_of(file).find(message), std::string::npos) << error_of(file);
   // What the corner check must let through: negative OBJ corners, which count back from
   // the line they are on.
-  EXPECT_EQ(read_mesh(write("back.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -3\nv 1 1 0\nf -1 -2 -3\n")).triangles.size(), 2u);
+  EXPECT_EQ(
+      read_mesh(write("back.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -3\nv 1 1 0\nf -1 -2 -3\n")).triangles.size(),
+      2u);
 
   for (const std::string& e : {error_of(path("missing.ply")), error_of(path("cut.ply"))}) {
     EXPECT_EQ(e.find(dir_.string()), 0u) << e;
@@ -741,7 +752,8 @@ TEST_F(MeshIo, text_files_with_comments_colours_and_signs_are_read) {
   // and lines, '+' signs, exponents, COFF colours, counts on the OFF line.
   const std::string obj = write("ok.obj", "# square\nv +0 0 0\nvn 0 0 1\nvt 0 0\nv 1e0 0 0\n\nv 1 1 0 1\nv 0 1.0 0\n"
                                           "o part\ng half\nusemtl red\nf 1 2 3 # first half\nf 1 3 4\nl 1 3\n");
-  const std::string bom = write("bom.obj", "\xEF\xBB\xBFv 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nv 0 1 0\r\nf 1 2 3\r\nf 1 3 4\r\n");
+  const std::string bom =
+      write("bom.obj", "\xEF\xBB\xBFv 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nv 0 1 0\r\nf 1 2 3\r\nf 1 3 4\r\n");
   const std::string off = write("ok.off", "COFF 4 2 0\n# corners\n0 0 0 255 0 0 255\n1 0 0 255 0 0 255\n"
                                           "1 1 0 255 0 0 255\n0 1 0 255 0 0 255\n3 0 1 2\n3 0 2 3\n");
   for (const std::string& p : {obj, bom, off}) {
@@ -800,33 +812,39 @@ TEST_F(MeshIo, damaged_files_are_loaded_or_refused) {
     stl.append(2, '\0');
   }
   const std::pair<std::string, std::string> seeds[] = {
-      {"s.ply", ply_header(7, 4, "property int flags\n") + corners + "4 0 1 2 3 0\n3 1 5 6 0\n3 1 6 2 0\n5 0 1 2 4 3 0\n"},
+      {"s.ply",
+       ply_header(7, 4, "property int flags\n") + corners + "4 0 1 2 3 0\n3 1 5 6 0\n3 1 6 2 0\n5 0 1 2 4 3 0\n"},
       {"s.off", "OFF\n7 4 0\n" + corners + "4 0 1 2 3\n5 0 1 2 4 3\n3 1 5 6\n3 1 6 2 255 0 0\n"},
       {"s.obj", obj + "vn 0 0 1\nf 1//1 2//1 3//1 4//1\nf 2 6 7\nf -5 -1 -4\nq 3 2 4 6\n"},
-      {"s.stl", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\n"
-                "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid a\n"},
+      {"s.stl",
+       "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\n"
+       "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid a\n"},
       {"b.ply", binary_ply},
       {"b.stl", stl},
       // Old Stanford elements: triangle strips and a range grid.
-      {"t.ply", "ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\n"
-                "element tristrips 1\nproperty list int int vertex_indices\nend_header\n" + corners +
-                "8 0 1 3 2 -1 1 5 6\n"},
-      {"g.ply", "ply\nformat ascii 1.0\nobj_info num_cols 4\nobj_info num_rows 2\nelement vertex 7\n"
-                "property float x\nproperty float y\nproperty float z\nelement range_grid 8\n"
-                "property list uchar int vertex_indices\nend_header\n" + corners +
-                "1 0\n1 1\n1 5\n0\n1 3\n1 2\n2 6 4\n1 4\n"},
+      {"t.ply",
+       "ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\n"
+       "element tristrips 1\nproperty list int int vertex_indices\nend_header\n" +
+           corners + "8 0 1 3 2 -1 1 5 6\n"},
+      {"g.ply",
+       "ply\nformat ascii 1.0\nobj_info num_cols 4\nobj_info num_rows 2\nelement vertex 7\n"
+       "property float x\nproperty float y\nproperty float z\nelement range_grid 8\n"
+       "property list uchar int vertex_indices\nend_header\n" +
+           corners + "1 0\n1 1\n1 5\n0\n1 3\n1 2\n2 6 4\n1 4\n"},
       // Colours: vertex and face colours in PLY and OFF, materials (m.mtl, damaged too) in OBJ.
       {"c.ply", ply_header(7, 3, "property uchar red\nproperty float green\nproperty uchar blue\n") + corners +
                     "4 0 1 2 3 255 0.5 0\n3 1 5 6 0 1 255\n3 1 6 2 9 0 9\n"},
-      {"c.off", "COFF\n7 3 0\n0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 1 2 3\n0.5 2 0 4 5 6\n"
-                "2 0 0 0.5 0.5 0.5\n2 1 0 1 1 1\n4 0 1 2 3 255 0 0\n3 1 5 6 0.1 0.2 0.3 1\n3 1 6 2 1 2 3 4\n"},
+      {"c.off",
+       "COFF\n7 3 0\n0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 1 2 3\n0.5 2 0 4 5 6\n"
+       "2 0 0 0.5 0.5 0.5\n2 1 0 1 1 1\n4 0 1 2 3 255 0 0\n3 1 5 6 0.1 0.2 0.3 1\n3 1 6 2 1 2 3 4\n"},
       {"c.obj", "mtllib m.mtl\n" + obj + "vt 0 0\nusemtl red\nf 1/1 2/1 3/1 4/1\nusemtl blue one\nf 2 6 7\nf 2 7 3\n"},
       // A texture (x.mtl, damaged too, names x.png).
       {"x.obj", "mtllib x.mtl\n" + obj + "vt 0 0\nvt 1 0\nvt 1 1\nusemtl t\nf 1/1 2/2 3/3 4/1\nf 2/2 6/3 7/-1\n"},
-      {"x.ply", "ply\nformat ascii 1.0\ncomment TextureFile x.png\nelement vertex 7\nproperty float x\n"
-                "property float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\n"
-                "property list uchar float texcoord\nproperty int texnumber\nend_header\n" + corners +
-                "4 0 1 2 3 8 0 0 1 0 1 1 0 1 0\n3 1 5 6 6 1 0 0.5 0.25 1 1 0\n"},
+      {"x.ply",
+       "ply\nformat ascii 1.0\ncomment TextureFile x.png\nelement vertex 7\nproperty float x\n"
+       "property float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\n"
+       "property list uchar float texcoord\nproperty int texnumber\nend_header\n" +
+           corners + "4 0 1 2 3 8 0 0 1 0 1 1 0 1 0\n3 1 5 6 6 1 0 0.5 0.25 1 1 0\n"},
   };
   write_png(path("x.png"), Image{2, 1, {255, 0, 0, 255, 0, 0, 255, 128}});
   const std::string mtl = "newmtl red\nKd 1 0 0\nd 0.5\nnewmtl blue one\nKd 0 0 1\nnewmtl t\nmap_Kd t.png\n";

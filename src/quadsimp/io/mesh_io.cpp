@@ -64,7 +64,8 @@ MeshFile read_stl(const std::string& path) {
   TMesh m;
   int mask = 0;
   const int err = vcg::tri::io::ImporterSTL<TMesh>::Open(m, path.c_str(), mask);
-  if (err != 0) fail_file(path, std::string("unreadable STL (") + vcg::tri::io::ImporterSTL<TMesh>::ErrorMsg(err) + ")");
+  if (err != 0)
+    fail_file(path, std::string("unreadable STL (") + vcg::tri::io::ImporterSTL<TMesh>::ErrorMsg(err) + ")");
   if (m.face.empty())
     fail_file(path, "unreadable STL (no facet read: neither a binary STL of the size its facet count gives, nor lines "
                     "of text)");

@@ -350,7 +350,8 @@ MeshFile read_ply(const std::string& path) {
         const Property& prop = e.properties[k];
         double x;
         if (!prop.list) {
-          if (!values.next(prop.value, x)) fail("its data ends, or is not a number, in " + detail::quoted(e.name) + " " + std::to_string(i));
+          if (!values.next(prop.value, x))
+            fail("its data ends, or is not a number, in " + detail::quoted(e.name) + " " + std::to_string(i));
           for (int c = 0; c < 3; ++c)
             if (vertex && int(k) == xyz[c]) p[c] = x;
           for (int c = 0; c < 4; ++c)
@@ -366,10 +367,12 @@ MeshFile read_ply(const std::string& path) {
         }
         double n;
         if (!values.next(prop.count, n) || n < 0 || n > double(values.left()))
-          fail("a list that is not there, or longer than the file, in " + detail::quoted(e.name) + " " + std::to_string(i));
+          fail("a list that is not there, or longer than the file, in " + detail::quoted(e.name) + " " +
+               std::to_string(i));
         if (int(k) == list_at) list.clear();
         for (long long j = 0; j < static_cast<long long>(n); ++j) {
-          if (!values.next(prop.value, x)) fail("its data ends, or is not a number, in " + detail::quoted(e.name) + " " + std::to_string(i));
+          if (!values.next(prop.value, x))
+            fail("its data ends, or is not a number, in " + detail::quoted(e.name) + " " + std::to_string(i));
           if (int(k) == texcoord) {
             if (uv_values++ % 2 == 0) corner_uvs.push_back({float(x), 0});
             else corner_uvs.back()[1] = float(x);
@@ -440,7 +443,8 @@ MeshFile read_ply(const std::string& path) {
     }
   for (const Index c : corners)
     if (c >= positions.size())
-      fail("a face corner " + std::to_string(c) + " names no vertex (the file has " + std::to_string(positions.size()) + ")");
+      fail("a face corner " + std::to_string(c) + " names no vertex (the file has " + std::to_string(positions.size()) +
+           ")");
   triangles.reserve(corners.size());
   faux.reserve(corners.size());
   // Face colours are kept if every face has one (a strip's or a grid's triangles have none).

@@ -8,8 +8,8 @@
 namespace qs {
 
 // Quads come back as quads (also MeshLab's triangle pairs whose shared edge a PLY's face
-// flags mark faux); larger polygons are fanned into triangles from their first corner. \throw InvalidInput "PATH: line N: reason" for
-// anything they cannot read as stated.
+// flags mark faux); larger polygons are fanned into triangles from their first corner. \throw InvalidInput "PATH: line
+// N: reason" for anything they cannot read as stated.
 
 //! ASCII OFF ("[ST][C][N]OFF", one vertex and one face per line): positions, COFF's
 //! vertex colours and the faces' colours; normals and texture coordinates ignored.

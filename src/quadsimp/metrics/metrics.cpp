@@ -176,16 +176,16 @@ SurfaceDistance surface_distance(const QuadMesh& m, const ReferenceSurface& ref,
 
 std::string to_json(const QuadQuality& q, const SurfaceDistance* d) {
   char buf[2048];
-  int n = std::snprintf(buf, sizeof buf,
-                        "{\"faces\": %u, \"vertices\": %u, \"pure_quad\": true, \"max_valence\": %d, "
-                        "\"max_valence_interior\": %d, \"regular_percent\": %.3f, \"valence4_percent\": %.3f, "
-                        "\"homeometry_min\": %.4f, \"homeometry_max\": %.4f, \"edge_ratio_min\": %.4f, "
-                        "\"edge_ratio_max\": %.4f, \"mean_edge\": %.6g, \"nonconvex_faces\": %u, \"flipped_faces\": %u, "
-                        "\"folded_faces\": %u, \"two_quad_pieces\": %u, \"border_vertices\": %u, \"border_loops\": %u",
-                        q.faces, q.vertices, q.max_valence, q.max_valence_interior, q.regular_percent,
-                        q.valence4_percent, q.homeometry_min, q.homeometry_max, q.edge_ratio_min, q.edge_ratio_max,
-                        q.mu, q.nonconvex_faces, q.flipped_faces, q.folded_faces, q.two_quad_pieces, q.border_vertices,
-                        q.border_loops);
+  int n =
+      std::snprintf(buf, sizeof buf,
+                    "{\"faces\": %u, \"vertices\": %u, \"pure_quad\": true, \"max_valence\": %d, "
+                    "\"max_valence_interior\": %d, \"regular_percent\": %.3f, \"valence4_percent\": %.3f, "
+                    "\"homeometry_min\": %.4f, \"homeometry_max\": %.4f, \"edge_ratio_min\": %.4f, "
+                    "\"edge_ratio_max\": %.4f, \"mean_edge\": %.6g, \"nonconvex_faces\": %u, \"flipped_faces\": %u, "
+                    "\"folded_faces\": %u, \"two_quad_pieces\": %u, \"border_vertices\": %u, \"border_loops\": %u",
+                    q.faces, q.vertices, q.max_valence, q.max_valence_interior, q.regular_percent, q.valence4_percent,
+                    q.homeometry_min, q.homeometry_max, q.edge_ratio_min, q.edge_ratio_max, q.mu, q.nonconvex_faces,
+                    q.flipped_faces, q.folded_faces, q.two_quad_pieces, q.border_vertices, q.border_loops);
   std::string s(buf, std::size_t(n));
   if (d) {
     n = std::snprintf(buf, sizeof buf,

@@ -121,7 +121,8 @@ void Creases::chain(const TriMesh& mesh, const std::vector<std::array<Index, 3>>
   std::vector<Index> fill(start.begin(), start.end() - 1);
   for (Index f = 0; f < nf; ++f)
     for (Index k = 0; k < 3; ++k)
-      if (crease[3 * f + k] && canonical(f, k)) edges[fill[from(3 * f + k)]++] = edges[fill[to(3 * f + k)]++] = 3 * f + k;
+      if (crease[3 * f + k] && canonical(f, k))
+        edges[fill[from(3 * f + k)]++] = edges[fill[to(3 * f + k)]++] = 3 * f + k;
   auto other_end = [&](Index e, Index v) { return from(e) == v ? to(e) : from(e); };
   // The point `reach` along the creases from v by edge e, or where they stop short of it
   // (an end, a meeting, the border, or back at v round a loop).

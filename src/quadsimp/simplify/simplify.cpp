@@ -198,8 +198,8 @@ bool Simplifier::place(Index f, Index k, Vec3& pos, SurfacePoint& foot) const {
   // The paper's place: the midpoint projected along the normal. Where that would fold a
   // neighbour (small faces on curved parts), either end is tried too: both lie on M0,
   // and without this such faces stay, with their short edges, to the end.
-  foot = ref_.project_near(foot_face_[a], collapse_position(m_, f, k), m_.vertex_area_normal(a) + m_.vertex_area_normal(c),
-                           2 * norm_of_diagonal(m_, f, k));
+  foot = ref_.project_near(foot_face_[a], collapse_position(m_, f, k),
+                           m_.vertex_area_normal(a) + m_.vertex_area_normal(c), 2 * norm_of_diagonal(m_, f, k));
   if (foot.found() && shape_after(foot.point, ref_.normal_at(foot))) {
     pos = foot.point;
     return true;

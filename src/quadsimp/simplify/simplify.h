@@ -70,8 +70,8 @@ struct SimplifyOptions {
   //! count). With 0.15 and square quads (max_aspect 1, no reach) the bunny, gargoyle and
   //! armadillo halted within 10% of the paper's counts, the moai 15-35% below; with the
   //! pipeline's stretched quads and reach the bunny halts 12-37% above (766 to 933 quads
-  //! over eight draws, against 681; its base's holes hold the faces beside them), the moai from 2% below to 23% above (92 to 116,
-  //! against 94; bench/RESULTS.md).
+  //! over eight draws, against 681; its base's holes hold the faces beside them), the moai from 2% below to 23% above
+  //! (92 to 116, against 94; bench/RESULTS.md).
   double halt_share = 0.15;
   //! Adaptive mode: quads may be up to this many times longer along the surface's flatter
   //! direction than across its most curved one (fitmap/anisotropy.h; 1: as square as the
