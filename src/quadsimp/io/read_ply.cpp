@@ -272,6 +272,45 @@ FileTexture texture_of_polygons(const std::string& path, const std::vector<std::
   return kept_texture(std::move(t));
 }
 
+// The triangles of one "tristrips" entry: each run between restarts (-1), triangle k of a
+// run corners k, k+1, k+2, every other one turned (vcglib's order, so that all face the
+// same way).
+template <class AddTriangle>
+void strip_triangles(const std::vector<long long>& list, AddTriangle&& add_triangle) {
+  std::size_t run = 0;
+  for (std::size_t k = 0; k + 2 < list.size(); ++k) {
+    if (list[k] < 0 || list[k + 1] < 0 || list[k + 2] < 0) {
+      if (list[k] < 0) run = k + 1;
+      continue;
+    }
+    if ((k - run) % 2)
+      add_triangle(list[k + 1], list[k], list[k + 2]);
+    else
+      add_triangle(list[k], list[k + 1], list[k + 2]);
+  }
+}
+
+// A range grid's cells (`grid`: the vertex at each point, row by row, -1 where none): two
+// triangles joined by a faux diagonal (a quad) where all four points have a vertex, else a
+// triangle on three: vcglib's SparseFaceGrid(), the same triangles in the same order.
+template <class AddTriangle>
+void range_grid_triangles(const std::vector<long long>& grid, long long rows, long long cols,
+                          AddTriangle&& add_triangle) {
+  for (long long r = 0; r + 1 < rows && !grid.empty(); ++r)
+    for (long long c = 0; c + 1 < cols; ++c) {
+      const long long v0 = grid[r * cols + c], v1 = grid[r * cols + c + 1];
+      const long long v2 = grid[(r + 1) * cols + c], v3 = grid[(r + 1) * cols + c + 1];
+      const std::uint8_t quad = v0 >= 0 && v1 >= 0 && v2 >= 0 && v3 >= 0 ? 4 : 0;  // edge 2: v0-v3
+      if (v0 >= 0 && v3 >= 0 && (v1 >= 0 || v2 >= 0)) {
+        if (v2 >= 0) add_triangle(v3, v2, v0, quad);
+        if (v1 >= 0) add_triangle(v0, v1, v3, quad);
+      } else if (v1 >= 0 && v2 >= 0) {
+        if (v0 >= 0) add_triangle(v2, v0, v1);
+        if (v3 >= 0) add_triangle(v1, v3, v2);
+      }
+    }
+}
+
 }  // namespace
 
 MeshFile read_ply(const std::string& path) {
@@ -387,17 +426,7 @@ MeshFile read_ply(const std::string& path) {
         }
       }
       if (strips) {
-        // Each run between restarts: triangle k of a run is corners k, k+1, k+2, every
-        // other one turned (vcglib's order, so that all face the same way).
-        std::size_t run = 0;
-        for (std::size_t k = 0; k + 2 < list.size(); ++k) {
-          if (list[k] < 0 || list[k + 1] < 0 || list[k + 2] < 0) {
-            if (list[k] < 0) run = k + 1;
-            continue;
-          }
-          if ((k - run) % 2) add_triangle(list[k + 1], list[k], list[k + 2]);
-          else add_triangle(list[k], list[k + 1], list[k + 2]);
-        }
+        strip_triangles(list, add_triangle);
         continue;
       }
       if (range) {
@@ -425,22 +454,7 @@ MeshFile read_ply(const std::string& path) {
       }
     }
   }
-  // A range grid's cells: two triangles joined by a faux diagonal (a quad) where all four
-  // points have a vertex, else a triangle on three: vcglib's SparseFaceGrid(), the same
-  // triangles in the same order.
-  for (long long r = 0; r + 1 < header.grid_rows && !grid.empty(); ++r)
-    for (long long c = 0; c + 1 < header.grid_cols; ++c) {
-      const long long v0 = grid[r * header.grid_cols + c], v1 = grid[r * header.grid_cols + c + 1];
-      const long long v2 = grid[(r + 1) * header.grid_cols + c], v3 = grid[(r + 1) * header.grid_cols + c + 1];
-      const std::uint8_t quad = v0 >= 0 && v1 >= 0 && v2 >= 0 && v3 >= 0 ? 4 : 0;  // edge 2: v0-v3
-      if (v0 >= 0 && v3 >= 0 && (v1 >= 0 || v2 >= 0)) {
-        if (v2 >= 0) add_triangle(v3, v2, v0, quad);
-        if (v1 >= 0) add_triangle(v0, v1, v3, quad);
-      } else if (v1 >= 0 && v2 >= 0) {
-        if (v0 >= 0) add_triangle(v2, v0, v1);
-        if (v3 >= 0) add_triangle(v1, v3, v2);
-      }
-    }
+  range_grid_triangles(grid, header.grid_rows, header.grid_cols, add_triangle);
   for (const Index c : corners)
     if (c >= positions.size())
       fail("a face corner " + std::to_string(c) + " names no vertex (the file has " + std::to_string(positions.size()) +
