@@ -482,6 +482,42 @@ Index split_pairs_at_creases(TriMesh& t, const std::vector<std::array<Index, 3>>
   return splits;
 }
 
+// Greedy matching of the triangles still unpaired, best candidate first (quad_quality();
+// non-convex pairs and pairs bent by more than max_dihedral_deg are not candidates); ties
+// broken by ids for determinism. Returns the triangles it paired. Its candidates and
+// normals are freed on return, before the searches' and the blossom algorithm's memory is
+// taken (the latter's graph sets the peak of a run).
+Index pair_greedily(const TriMesh& t, const std::vector<std::array<Index, 3>>& adj, double max_dihedral_deg,
+                    std::vector<Index>& mate) {
+  struct Cand {
+    double score;
+    Index f, k;
+  };
+  std::vector<Cand> cand;
+  cand.reserve(3 * t.faces.size() / 2);
+  const double cos_max = std::cos(max_dihedral_deg * M_PI / 180.0);
+  const std::vector<Vec3> normal = unit_normals(t);
+  for (Index f = 0; f < t.n_faces(); ++f)
+    for (Index k = 0; k < 3; ++k) {
+      const Index g = adj[f][k];
+      if (g == kNone || g < f || normal[f].dot(normal[g]) < cos_max) continue;
+      const double s = quad_quality(t.positions, merged_quad(t, f, k, g));
+      if (s > 0) cand.push_back({s, f, k});
+    }
+  std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) {
+    return a.score > b.score || (a.score == b.score && (a.f < b.f || (a.f == b.f && a.k < b.k)));
+  });
+  Index paired = 0;
+  for (const Cand& c : cand) {
+    const Index g = adj[c.f][c.k];
+    if (mate[c.f] != kNone || mate[g] != kNone) continue;
+    mate[c.f] = g;
+    mate[g] = c.f;
+    paired += 2;
+  }
+  return paired;
+}
+
 }  // namespace
 
 QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertReport* report) {
@@ -506,37 +542,8 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
         if (crease[3 * f + k]) adj[f][k] = kNone;
   }
 
-  // Greedy matching, best candidate first; ties broken by ids for determinism. Its
-  // candidates and normals go at the end of the block, before the searches' and the
-  // blossom algorithm's memory is taken (the latter's graph sets the peak of a run).
   r.paired_greedy = Index(std::count_if(mate.begin(), mate.end(), [](Index g) { return g != kNone; }));
-  {
-    struct Cand {
-      double score;
-      Index f, k;
-    };
-    std::vector<Cand> cand;
-    cand.reserve(3 * t.faces.size() / 2);
-    const double cos_max = std::cos(opt.max_dihedral_deg * M_PI / 180.0);
-    const std::vector<Vec3> normal = unit_normals(t);
-    for (Index f = 0; f < t.n_faces(); ++f)
-      for (Index k = 0; k < 3; ++k) {
-        const Index g = adj[f][k];
-        if (g == kNone || g < f || normal[f].dot(normal[g]) < cos_max) continue;
-        const double s = quad_quality(t.positions, merged_quad(t, f, k, g));
-        if (s > 0) cand.push_back({s, f, k});
-      }
-    std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) {
-      return a.score > b.score || (a.score == b.score && (a.f < b.f || (a.f == b.f && a.k < b.k)));
-    });
-    for (const Cand& c : cand) {
-      const Index g = adj[c.f][c.k];
-      if (mate[c.f] != kNone || mate[g] != kNone) continue;
-      mate[c.f] = g;
-      mate[g] = c.f;
-      r.paired_greedy += 2;
-    }
-  }
+  r.paired_greedy += pair_greedily(t, adj, opt.max_dihedral_deg, mate);
 
   Search search;
   search.resize(t.n_faces());
