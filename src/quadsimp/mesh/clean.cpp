@@ -403,11 +403,13 @@ std::vector<std::pair<Index, Index>> orient(TriMesh& m, std::vector<std::array<I
   std::vector<int> flip(nf, -1);
   std::vector<Index> members;  // a component's faces in the order the search reached them
   std::vector<std::pair<Index, Index>> cut;
-  // Whether edge k of f, to an oriented neighbour, joins two faces that disagree.
-  auto disagree = [&](Index f, Index k) {
-    const Index g = adj[f][k];
-    return g != kNone && flip[g] != (flip[f] ^ int(has_directed(m.faces[g], m.faces[f][k], m.faces[f][(k + 1) % 3])));
+  // The flip that f's neighbour across edge k needs to agree with f: f runs a -> b along
+  // the edge, and the neighbour agrees if it runs b -> a.
+  auto wanted = [&](Index f, Index k) {
+    return flip[f] ^ int(has_directed(m.faces[adj[f][k]], m.faces[f][k], m.faces[f][(k + 1) % 3]));
   };
+  // Whether edge k of f, to an oriented neighbour, joins two faces that disagree.
+  auto disagree = [&](Index f, Index k) { return adj[f][k] != kNone && flip[adj[f][k]] != wanted(f, k); };
   auto length = [&](Index f, Index k) { return (P[m.faces[f][k]] - P[m.faces[f][(k + 1) % 3]]).norm(); };
   std::vector<Index> work;
   for (Index seed = 0; seed < nf; ++seed) {
@@ -420,8 +422,7 @@ std::vector<std::pair<Index, Index>> orient(TriMesh& m, std::vector<std::array<I
       for (Index k = 0; k < 3; ++k) {
         const Index g = adj[f][k];
         if (g == kNone) continue;
-        // f runs a -> b along this edge; g agrees with f if it runs b -> a.
-        const int want = flip[f] ^ int(has_directed(m.faces[g], m.faces[f][k], m.faces[f][(k + 1) % 3]));
+        const int want = wanted(f, k);
         if (flip[g] == -1) {
           flip[g] = want;
           members.push_back(g);
