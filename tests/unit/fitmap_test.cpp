@@ -142,6 +142,17 @@ TEST(Fitmaps, sphere_cap_s_matches_the_analytic_growth) {
   }
 }
 
+TEST(Fitmaps, sphere_cap_s_does_not_depend_on_the_grid) {
+  // A ball takes the triangles whose centroid lies in it. Taking only those with every
+  // corner inside shrank the small balls by about an edge, so F_S fell with coarser grids:
+  // 0.82 of the analytic value on a 40 x 40 grid, 1.03 on 80 x 80 (1.01 and 1.03 now).
+  const double expected = std::sqrt(1.0 / (4 * std::sqrt(3.0)));
+  for (int n : {40, 80, 160}) {
+    const TriMesh t = height_field(n, 0.4, [](double x, double y) { return std::sqrt(1 - x * x - y * y); });
+    EXPECT_NEAR(compute_fitmaps_unsmoothed(t).s[centre_vertex(t)], expected, 0.05 * expected) << n << " x " << n;
+  }
+}
+
 TEST(Fitmaps, do_not_depend_on_where_the_mesh_is) {
   // A million units out (survey coordinates), the moments' covariance cancelled every
   // digit: the plane fits, so both fitmaps, were noise.
@@ -189,8 +200,8 @@ TEST(Fitmaps, sphere_m_stops_where_the_cap_passes_tau) {
 }
 
 TEST(Fitmaps, fast_method_matches_brute_force) {
-  // Within 5% (median relative difference) at a sample of vertices, on the bunny if
-  // available, otherwise on a bumpy sphere.
+  // Within 1% (median relative difference) and 5% (90th percentile) at a sample of
+  // vertices, on the bunny if available, otherwise on a bumpy sphere.
   TriMesh t;
   const std::string bunny = "/usr/share/glmark2/models/bunny.obj";
   if (std::ifstream(bunny)) {
@@ -208,8 +219,13 @@ TEST(Fitmaps, fast_method_matches_brute_force) {
     if (ref.s[j] > 0) ds.push_back(std::abs(fast.s[sample[j]] - ref.s[j]) / ref.s[j]);
     dm.push_back(std::abs(fast.m[sample[j]] - ref.m[j]) / ref.m[j]);
   }
-  EXPECT_LT(median(ds), 0.05);
-  EXPECT_LT(median(dm), 0.05);
+  // The cells take triangles by their centroids, as the exact balls do: with the exact
+  // balls taking only triangles with every corner inside, S was 4.1% off at the median
+  // and 13% at the 90th percentile on the bunny (0.15% and 1.2% since).
+  EXPECT_LT(median(ds), 0.01);
+  EXPECT_LT(median(dm), 0.01);
+  std::sort(ds.begin(), ds.end());
+  EXPECT_LT(ds[ds.size() * 9 / 10], 0.05);
 }
 
 TEST(Fitmaps, radii_past_a_vertexs_failure_are_skipped_without_changing_anything) {
@@ -833,9 +849,10 @@ TEST(Adaptive, automatic_halting_keeps_the_moai_projectable) {
   // The moai is smooth: its M-fitmap blocks little, and without the reach automatic
   // halting stopped at 63 quads at the paper's bound, parts of which were more than 5% of
   // the diagonal off it (97.3% projectable). With the pipeline's stretched quads the file
-  // itself is 98.91% projectable without the reach (66 quads), a re-rounded copy of it
-  // 98.75% (bench/RESULTS.md); the check is shown at the paper's bound (no slack, and
-  // square quads, whose bound is the paper's radius in the loop too).
+  // itself was 98.91% projectable without the reach (66 quads), and is 99.68% since the
+  // fitmaps' balls take triangles by their centroids (71 quads; bench/RESULTS.md); the
+  // check is shown at the paper's bound (no slack, and square quads, whose bound is the
+  // paper's radius in the loop too).
   const std::string path = shared_dataset("moai");
   if (path.empty()) GTEST_SKIP() << "../shared/datasets not found";
   const Input in = load_input(path);
@@ -858,9 +875,10 @@ TEST(Adaptive, automatic_halting_keeps_the_moai_projectable) {
   EXPECT_GE(projectable, 0.995);
   const auto [at_bound, at_bound_projectable] = run(defaults.reach, defaults.halt_share, true);
   EXPECT_GE(at_bound_projectable, 0.995);
-  EXPECT_EQ(at_bound.beyond_reach, 0u);  // 1 with stretched quads (counted below)
-  // The check is what keeps both.
-  EXPECT_LT(run(0.0, defaults.halt_share, false).second, 0.99);
+  // The check refuses collapses; the rotations and smoothing after them can still take a
+  // face or two out of reach (counted, and said in the log's note).
+  EXPECT_LE(at_bound.beyond_reach, 2u);
+  // The check is what keeps the run at the bound projectable.
   EXPECT_LT(run(0.0, defaults.halt_share, true).second, 0.99);
   // Run on by the paper's rule, more faces are let through (rotations and smoothing after
   // the collapses are not checked); they are counted, and the log's note says so.

@@ -16,9 +16,10 @@ namespace qs {
 //! Euclidean ball around p that is connected to p through mesh edges inside the ball:
 //! intrinsic like a geodesic disc, but as cheap as a ball, and it does not mix two
 //! sheets that are close in space (fingers, ears, thin walls) which a full ball would
-//! merge into one noisy fit. Each neighbourhood is fitted with a plane by total least
-//! squares on exact, area-weighted triangle moments (independent of the sampling
-//! density); E(r_i) = RMS distance to that plane. F_S = sqrt(a) of the least-squares
+//! merge into one noisy fit. Its triangles are those with a corner reached and their
+//! centroid in the ball (so it covers about pi r^2 of a flat surface from r_0 on). Each
+//! neighbourhood is fitted with a plane by total least squares on exact, area-weighted
+//! triangle moments (independent of the sampling density); E(r_i) = RMS distance to that plane. F_S = sqrt(a) of the least-squares
 //! fit E(r) = a r^2. F_M = the largest radius, before the first failure, at which the
 //! triangles whose normal disagrees with the plane's (oriented like the area-weighted
 //! mean normal) cover less than tau of the area.
