@@ -2,8 +2,8 @@
 // Fitmaps on all cores: the Stanford bunny of glmark2-data (69,666 triangles), and a
 // 1.1-million-triangle mesh made by splitting every bunny triangle into four, twice.
 // The bunny run also reports the median and 90th percentile of the relative difference
-// to the brute-force reference at every 97th vertex. The tips (`--keep-tips`) of the 1.1M mesh at the scales
-// of 500, 5,000 and 50,000 quads.
+// to the brute-force reference at every 97th vertex. The tips (`--keep-tips`) of the 1.1M
+// mesh at the scales of 500, 5,000 and 50,000 quads.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>

@@ -94,17 +94,11 @@ Fit fit_plane(const Moments& m) {
   return f;
 }
 
-// Vertex -> vertex and vertex -> triangle incidence, as flat CSR arrays, and the sum of
-// each triangle's corners (three times its centroid: one load where the exact balls test
-// it, not three).
+// Vertex -> vertex and vertex -> triangle incidence, as flat CSR arrays.
 struct Incidence {
   std::vector<Index> vv_start, vv, vt_start, vt;
-  std::vector<Vec3> corner_sum;
   explicit Incidence(const TriMesh& t) {
     const Index nv = t.n_vertices();
-    corner_sum.resize(t.n_faces());
-    for (Index f = 0; f < t.n_faces(); ++f)
-      corner_sum[f] = t.positions[t.faces[f][0]] + t.positions[t.faces[f][1]] + t.positions[t.faces[f][2]];
     vt_start.assign(nv + 1, 0);
     for (const auto& f : t.faces)
       for (Index v : f) ++vt_start[v + 1];
@@ -162,7 +156,8 @@ bool exact_ball(const TriMesh& t, const Incidence& inc, const std::vector<Moment
       for (Index x : tri)
         if (s.mark[x] == stamp) first = std::min(first, x);
       if (first != v) continue;
-      if ((inc.corner_sum[f] - 3 * c).squaredNorm() >= 9 * r2) continue;
+      const Vec3 corner_sum = t.positions[tri[0]] + t.positions[tri[1]] + t.positions[tri[2]];
+      if ((corner_sum - 3 * c).squaredNorm() >= 9 * r2) continue;
       sum.add(tm[f]);
       s.tris.push_back(f);
     }

@@ -29,11 +29,10 @@ inline constexpr double kLeastS = double(std::numeric_limits<float>::min());
 // held_'s marks: a tip (SimplifyOptions::keep_tips) and a crease corner (::creases).
 inline constexpr char kHeldTip = 1, kHeldCorner = 2;
 
-// One candidate collapse: diagonal k (corners k, k+2) of `face`, valid while the
-// face's version is unchanged (lazy invalidation).
-// A heap entry: diagonal k of a face, at the face's version when it was keyed. The face
-// and k share one word (2 face + k), which orders entries by face, then k, as two fields
-// would: 12 bytes instead of 16, for the heap that takes a tenth of a large run's time.
+// One candidate collapse: diagonal k (corners k, k+2) of a face, valid while the face's
+// version is the one it was keyed at (lazy invalidation). The face and k share one word
+// (2 face + k), which orders entries by face, then k, as two fields would: 12 bytes
+// instead of 16, for the heap that takes a tenth of a large run's time.
 struct Entry {
   float key;
   std::uint32_t slot;
