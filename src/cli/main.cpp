@@ -129,8 +129,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(number_above_zero());
   s->add_option("--m-slack", simp.params.m_slack,
-                "adaptive: collapses may grow a face up to this times the M-fitmap's bound; --auto-halt still measures "
-                "where faces reach the bound itself (1: the paper's)")
+                "adaptive: collapses may grow a face smaller than --reach up to this times the M-fitmap's bound; "
+                "--auto-halt still measures where faces reach the bound itself (1: the paper's)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
   s->add_option("--halt-share", simp.params.halt_share,

@@ -22,7 +22,7 @@ struct SimplifyParams {
   bool auto_halt = false;        //!< adaptive: stop once the M-fitmap blocks halt_share of the surface
   double tau = FitmapOptions().tau;                //!< M-fitmap tolerance
   double m_factor = SimplifyOptions().m_factor;      //!< adaptive: the M-fitmap's bound, F_M / m_factor
-  double m_slack = SimplifyOptions().m_slack;  //!< adaptive: see SimplifyOptions::m_slack (1: the paper's bound)
+  double m_slack = 1.1;          //!< adaptive: see SimplifyOptions::m_slack (1: the paper's bound)
   double halt_share = SimplifyOptions().halt_share;  //!< auto_halt: see SimplifyOptions::halt_share
   double max_aspect = 3.0;       //!< adaptive: see SimplifyOptions::max_aspect (1: square quads)
   double reach = 0.045;          //!< adaptive: see SimplifyOptions::reach (0: no check)

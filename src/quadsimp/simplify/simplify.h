@@ -28,22 +28,17 @@ struct SimplifyOptions {
   const Fitmaps* fitmaps = nullptr;
   //! In adaptive mode, a face radius must stay at most F_M / m_factor (but see m_slack).
   double m_factor = 1.0;
-  //! Adaptive mode: a collapse may grow a face up to m_slack times the M-fitmap's bound;
+  //! Adaptive mode: a collapse may grow a face smaller than the reach (its diameter under
+  //! it; every face when the reach is 0) up to m_slack times the M-fitmap's bound;
   //! automatic halting still measures where faces reach the bound itself (1: the paper).
   //! Ours. The bound holds the faces of thin parts small (the armadillo's halting mesh had
   //! 23% of its faces on the tenth of the surface with the smallest F_M, the uniform one
-  //! 6%), and the rest of the surface paid for them. At the thirty-fifth stop the pipeline
-  //! took 1.1: over twelve fixed counts the RMS gain over uniform went from 25.5% to 27.0%;
-  //! over sixteen draws at
-  //! automatic halting the armadillo's from 21.5% to 25.5% (22.1% to 26.0% over eight
-  //! draws at six slacks from 1.05 to 1.3), the bunny's from 27.5% to 25.0% (it halts
-  //! coarser), and the halting counts came nearer the paper's (bunny.ply 705 quads
-  //! instead of 869; the paper 681). At 1.2 and 1.3 a draw of the bunny fell under 99.5%
-  //! projectable (bench/RESULTS.md, "Slack past the M-fitmap's bound"). Since the bound
-  //! follows stretched quads (max_aspect) the pipeline is back at 1: over 32 draws the
-  //! slack of 1.1 then gave the armadillo 1.6 points more and took 2.7 from the bunny and
-  //! 1.8 from the gargoyle, and left a bunny draw under 99.5% projectable (bench/RESULTS.md,
-  //! "The M-fitmap's bound along the stretch").
+  //! 6%), and the rest of the surface paid for them. A slack of 1.1 on every face raised
+  //! the armadillo's gain over uniform (twelve fixed counts 21.9% -> 26.4%) but took one of
+  //! 24 draws of the moai to 99.28% projectable (at the thirty-sixth stop a bunny draw to
+  //! 99.498%), so the pipeline's 1.1 (SimplifyParams) is for faces under the reach, the
+  //! small faces of thin parts: fixed counts 28.1% -> 29.4% (armadillo 26.0%), the moai's
+  //! 24 draws unchanged (bench/RESULTS.md, "The slack for faces under the reach").
   double m_slack = 1.0;
   //! In adaptive mode F_S is clamped to its [q, 1-q] quantiles in the priority and in the
   //! smoothing's target sizes, which bounds the size ratio between the finest and the
