@@ -250,7 +250,7 @@ Simplifier::QuadShape Simplifier::shape_of(const Vec3* q) {
 Simplifier::Verdict Simplifier::check_grown_face(Index g, const Vec3* q, Bound bound) const {
   const QuadShape s = shape_of(q);
   Index hint = centre_hint(g);
-  const bool slack = bound == Bound::Loop && !(reach_ > 0 && 2 * s.radius >= reach_);
+  const bool slack = bound == Bound::Loop && under_reach(s);
   const double factor = slack ? opt_.m_factor / opt_.m_slack : opt_.m_factor;
   if (bound_radius(g, q, s, bound) * factor > sample_fitmap(opt_.fitmaps->m, s.centre, s.normal, hint))
     return Verdict::Fitmap;
@@ -286,7 +286,7 @@ double Simplifier::bound_radius(Index g, const Vec3* q, const QuadShape& s, Boun
 // whole let a scan with many small holes grow its faces past them until no collapse was
 // left (bench/RESULTS.md, "Faces beside holes").
 bool Simplifier::beyond_reach(Index g, const Vec3* q, const QuadShape& s) const {
-  if (!(reach_ > 0) || 2 * s.radius < reach_) return false;  // within the reach of its corners, on M0
+  if (under_reach(s)) return false;
   if (!ref_.ray_project(s.centre, s.normal, reach_).found()) return true;
   for (Index i = 0; i < 4; ++i) {
     if (m_.is_border_halfedge(QuadMesh::halfedge(g, i))) continue;
