@@ -692,8 +692,8 @@ TEST_F(Cli, the_m_slack_reaches_the_loop_for_faces_under_the_reach) {
   // With the bound at F_M / 1.5 the M-fitmap holds the sphere's faces (34 quads for a
   // target of 6). With the reach at the whole diagonal, above every face, a slack of 1.25
   // refuses what a bound of F_M / 1.2 does: the same file (27 quads); without the slack,
-  // another. At the default reach those faces are larger than it, and the slack leaves
-  // them alone: the same file as without it.
+  // another. At the default reach those faces are larger than it, and without the reach
+  // no face is under it: the slack leaves them alone, the same file as without it.
   const std::string args = "simplify " + input_ + " --adaptive --faces 6";
   ASSERT_EQ(run(args + " " + p("s.ply") + " --m-factor 1.5 --m-slack 1.25 --reach 1").code, 0);
   ASSERT_EQ(run(args + " " + p("f.ply") + " --m-factor 1.2 --m-slack 1 --reach 1").code, 0);
@@ -703,6 +703,9 @@ TEST_F(Cli, the_m_slack_reaches_the_loop_for_faces_under_the_reach) {
   ASSERT_EQ(run(args + " " + p("d.ply") + " --m-factor 1.5 --m-slack 1.25").code, 0);
   ASSERT_EQ(run(args + " " + p("e.ply") + " --m-factor 1.5 --m-slack 1").code, 0);
   EXPECT_EQ(read("d.ply"), read("e.ply"));
+  ASSERT_EQ(run(args + " " + p("g.ply") + " --m-factor 1.5 --m-slack 1.25 --reach 0").code, 0);
+  ASSERT_EQ(run(args + " " + p("h.ply") + " --m-factor 1.5 --m-slack 1 --reach 0").code, 0);
+  EXPECT_EQ(read("g.ply"), read("h.ply"));
   EXPECT_EQ(run(args + " " + p("x.ply") + " --m-slack 0.5").code, 2);
 }
 

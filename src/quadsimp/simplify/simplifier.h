@@ -126,9 +126,9 @@ class Simplifier {
   static QuadShape shape_of(const Vec3* q);
   double bound_radius(Index g, const Vec3* q, const QuadShape& s, Bound bound) const;
   bool beyond_reach(Index g, const Vec3* q, const QuadShape& s) const;
-  // Smaller than the reach (or no reach): within the reach of its corners, which lie on M0,
-  // so beyond_reach() need not cast rays, and the M-fitmap's slack applies.
-  bool under_reach(const QuadShape& s) const { return !(reach_ > 0) || 2 * s.radius < reach_; }
+  // Smaller than the reach (none without one): within the reach of its corners, which lie
+  // on M0, so beyond_reach() need not cast rays; the M-fitmap's slack applies there only.
+  bool under_reach(const QuadShape& s) const { return 2 * s.radius < reach_; }
   Index count_beyond_reach() const;
   void count_refusal(Verdict v);  // the report's count for a verdict other than Ok
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);

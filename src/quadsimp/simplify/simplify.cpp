@@ -246,7 +246,7 @@ Simplifier::QuadShape Simplifier::shape_of(const Vec3* q) {
 // the input within reach along its normal. The loop's slack (SimplifyOptions::m_slack)
 // is for faces smaller than the reach only, which no ray check looks at: on large faces
 // it took a smooth shape's projectability under 99.5% (bench/RESULTS.md, "The slack for
-// faces under the reach").
+// faces under the reach"). Without the reach, the paper's bound holds everywhere.
 Simplifier::Verdict Simplifier::check_grown_face(Index g, const Vec3* q, Bound bound) const {
   const QuadShape s = shape_of(q);
   Index hint = centre_hint(g);
@@ -286,7 +286,7 @@ double Simplifier::bound_radius(Index g, const Vec3* q, const QuadShape& s, Boun
 // whole let a scan with many small holes grow its faces past them until no collapse was
 // left (bench/RESULTS.md, "Faces beside holes").
 bool Simplifier::beyond_reach(Index g, const Vec3* q, const QuadShape& s) const {
-  if (under_reach(s)) return false;
+  if (!(reach_ > 0) || under_reach(s)) return false;
   if (!ref_.ray_project(s.centre, s.normal, reach_).found()) return true;
   for (Index i = 0; i < 4; ++i) {
     if (m_.is_border_halfedge(QuadMesh::halfedge(g, i))) continue;

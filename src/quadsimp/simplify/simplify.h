@@ -29,7 +29,7 @@ struct SimplifyOptions {
   //! In adaptive mode, a face radius must stay at most F_M / m_factor (but see m_slack).
   double m_factor = 1.0;
   //! Adaptive mode: a collapse may grow a face smaller than the reach (its diameter under
-  //! it; every face when the reach is 0) up to m_slack times the M-fitmap's bound;
+  //! it; none when the reach is 0) up to m_slack times the M-fitmap's bound;
   //! automatic halting still measures where faces reach the bound itself (1: the paper).
   //! Ours. The bound holds the faces of thin parts small (the armadillo's halting mesh had
   //! 23% of its faces on the tenth of the surface with the smallest F_M, the uniform one
