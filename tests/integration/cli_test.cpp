@@ -689,9 +689,9 @@ TEST_F(Cli, the_reach_holds_quads_on_the_input_and_says_so) {
 }
 
 TEST_F(Cli, the_m_slack_reaches_the_loop_for_faces_under_the_reach) {
-  // With the bound at F_M / 1.5 the M-fitmap holds the sphere's faces (34 quads for a
+  // With the bound at F_M / 1.5 the M-fitmap holds the sphere's faces (33 quads for a
   // target of 6). With the reach at the whole diagonal, above every face, a slack of 1.25
-  // refuses what a bound of F_M / 1.2 does: the same file (27 quads); without the slack,
+  // refuses what a bound of F_M / 1.2 does: the same file (19 quads); without the slack,
   // another. At the default reach those faces are larger than it, and without the reach
   // no face is under it: the slack leaves them alone, the same file as without it.
   const std::string args = "simplify " + input_ + " --adaptive --faces 6";
