@@ -20,9 +20,9 @@ namespace qs {
 //! centroid in the ball (so it covers about pi r^2 of a flat surface from r_0 on). Each
 //! neighbourhood is fitted with a plane by total least squares on exact, area-weighted
 //! triangle moments (independent of the sampling density); E(r_i) = RMS distance to that
-//! plane. F_S = sqrt(a) of the least-squares fit E(r) = a r^2. F_M = the largest radius, before the first failure, at which the
-//! triangles whose normal disagrees with the plane's (oriented like the area-weighted
-//! mean normal) cover less than tau of the area.
+//! plane. F_S = sqrt(a) of the least-squares fit E(r) = a r^2. F_M = the largest radius,
+//! before the first failure, at which the triangles whose normal disagrees with the
+//! plane's (oriented like the area-weighted mean normal) cover less than tau of the area.
 struct FitmapOptions {
   int levels = 8;        //!< h: radii r_0..r_h
   double tau = 0.05;     //!< M-fitmap tolerance
