@@ -15,6 +15,7 @@
 #include <iterator>
 #include <map>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -449,6 +450,29 @@ TEST(PluginSpecs, names_are_unique_and_defaults_in_range) {
   EXPECT_THROW(filter_spec(FilterId(99)), std::out_of_range);
   EXPECT_EQ(default_target_faces(69'451), 3'472);
   EXPECT_EQ(default_target_faces(20), 6);
+}
+
+// The descriptions give some defaults in words, where the dialog cannot show them (the
+// slack has no parameter; the reach and halting share appear in the filter's own text):
+// a change of a default must change its words too.
+TEST(PluginSpecs, descriptions_quote_the_pipelines_defaults) {
+  const SimplifyParams d;
+  const auto words = [](double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
+  const auto help = [](const char* key) {
+    for (const ParamSpec& p : params_of(kSimplify))
+      if (std::string(p.key) == key) return std::string(p.help);
+    ADD_FAILURE() << key;
+    return std::string();
+  };
+  const std::string& info = filter_spec(kSimplify).info;
+  EXPECT_NE(info.find("reach (" + words(100 * d.reach) + "% "), std::string::npos) << info;
+  EXPECT_NE(info.find("share of the surface (" + words(100 * d.halt_share) + "% "), std::string::npos) << info;
+  EXPECT_NE(help("HaltShare").find("(" + words(d.halt_share) + ": "), std::string::npos);
+  EXPECT_NE(help("Reach").find("may grow " + words(d.m_slack) + " times past"), std::string::npos);
 }
 
 // vcg::CallBackPos's shape: the percentage and a message.
