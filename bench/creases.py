@@ -46,6 +46,12 @@ print(ms.current_mesh().face_number())
 """
 
 
+def make_part(python, model, path):
+    """Writes CAD part `model` to `path` (binary PLY) with pymeshlab; returns its triangle count."""
+    out = subprocess.run([python, "-c", MAKE, model, path], check=True, capture_output=True, text=True)
+    return out.stdout.strip().splitlines()[-1]
+
+
 def cells(j):
     return (f"{j['rms_e3']:.3f} | {j['hausdorff_e3']:.2f} | {j['regular_percent']:.1f} | "
             f"{j['homeometry_min']:.2f} | {j['nonconvex_faces'] + j['flipped_faces'] + j['folded_faces']}")
@@ -62,8 +68,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for model in args.models:
             mesh = os.path.join(tmp, model + ".ply")
-            triangles = subprocess.run([args.python, "-c", MAKE, model, mesh], check=True, capture_output=True,
-                                       text=True).stdout.strip().splitlines()[-1]
+            triangles = make_part(args.python, model, mesh)
             runs = [(f"{n} quads", n, []) for n in args.counts]
             runs.append(("auto-halt", 0, ["--adaptive", "--auto-halt"]))
             for label, faces, extra in runs:

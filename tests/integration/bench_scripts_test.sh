@@ -15,9 +15,9 @@ failures=0
 check() {  # script model rows [more options]: the rows the script must print for the model
   local script=$1 model=$2 rows=$3 out n
   shift 3
-  # open_scans.py makes its inputs and reads no dataset.
+  # open_scans.py and cad_parts.py make their inputs and read no dataset.
   local from=(--datasets "$datasets")
-  [ "$script" = open_scans ] && from=()
+  [ "$script" = open_scans ] || [ "$script" = cad_parts ] && from=()
   if ! out=$(python3 "$repo/bench/$script.py" --quadsimp "$cli" "${from[@]}" --models "$model" \
                --samples 2000 "$@" 2>&1); then
     echo "FAIL: $script.py exited with an error:"; echo "$out"; failures=$((failures + 1)); return
@@ -38,4 +38,5 @@ check fixed_counts gargoyle 4
 check fixed_counts armadillo 4 --both-args=--keep-tips
 check meshlab_quadric moai 15 --python "$python"
 check open_scans face 1 --python "$python" --counts
+check cad_parts cube 2 --python "$python" --counts 300
 [ "$failures" = 0 ]
