@@ -25,8 +25,8 @@ def main():
     args = parse_args(__doc__, MODELS, samples=200000, python=True, datasets=False,
                       extra=[("--counts", {"nargs": "*", "type": int, "default": [300, 1000]})])
     print("Distances in 1e-3 of the bounding-box diagonal.\n")
-    table_header("| part | adaptive run | quads | adaptive RMS, regular % | uniform RMS, regular % | adaptive closer by "
-                 "| adaptive projectable % |")
+    table_header("| part | adaptive run | quads | adaptive RMS, regular % | uniform RMS, regular % "
+                 "| adaptive closer by | adaptive projectable % |")
     with tempfile.TemporaryDirectory() as tmp:
         for model in args.models:
             mesh = os.path.join(tmp, model + ".ply")
