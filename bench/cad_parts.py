@@ -3,11 +3,11 @@
 
 The datasets are scans; these parts (a cube, a cylinder, a dodecahedron, a block with a
 hole and one with a boss, remeshed into a CAD export's irregular triangles: creases.py
-says how they are made) are flat-sided, where the fitmaps behave otherwise: F_S is near zero
-away from the edges (the block with a hole: its 20% quantile 1/650 of its median), and
-across a right-angled edge no normal turns away from a fitted plane, so F_M does not fall
-there. Each part gets adaptive mode with automatic halting and at each
-count, and uniform mode at the count each adaptive run reached.
+says how they are made) are flat-sided, where the fitmaps behave otherwise: F_S is near
+zero away from the edges (the block with a hole: its 20% quantile 1/650 of its median),
+and across a right-angled edge no normal turns away from a fitted plane, so F_M does not
+fall there. Each part gets adaptive mode with automatic halting and at each count, and
+uniform mode at the count each adaptive run reached.
 
     python3 bench/cad_parts.py [--quadsimp build/src/quadsimp] [--python .venv/bin/python]
                                [--models cube cylinder dodecahedron block_hole block_boss] [--counts 300 1000]
