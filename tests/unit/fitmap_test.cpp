@@ -96,6 +96,15 @@ SimplifyReport simplify_adaptive(const TriMesh& t, QuadMesh& q, Index target = 0
   return r;
 }
 
+// t's conversion simplified into q with opt, and checked.
+SimplifyReport simplify_conversion(const TriMesh& t, const ReferenceSurface& ref, const SimplifyOptions& opt,
+                                   QuadMesh& q) {
+  q = tri_to_quad(t);
+  const SimplifyReport r = simplify(q, ref, opt);
+  validate(q);
+  return r;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -329,6 +338,42 @@ TEST(Adaptive, auto_halt_terminates) {
   EXPECT_GE(q.n_faces(), 6u + 1u);  // the sphere keeps a closed mesh, the far triangle its quad
 }
 
+TEST(Adaptive, auto_halt_takes_debris_down_to_its_share_of_the_count) {
+  // A sphere and, beside it, a strip of 0.1 by 2.4 (24 squares): scan debris, which no
+  // diagonal collapse shrinks (each would pinch it). Halted by the sphere's measure, it
+  // kept all its quads; its share of the count reached is under one quad, and chords
+  // take it down to the last.
+  TriMesh t = tri_sphere(30, 40);
+  TriMesh strip = tri_grid(24, 1);
+  for (Vec3& p : strip.positions) p = Vec3(3 + 2.4 * p.x(), 0.1 * p.y(), 0);
+  append(t, strip);
+  clean(t);
+  const ReferenceSurface ref(t);
+  const Fitmaps f = compute_fitmaps(t);
+  auto run = [&](bool chords, QuadMesh& q) {
+    SimplifyOptions opt = adaptive_options(f);
+    opt.chord_collapses = chords;
+    opt.check_invariants = true;  // the pieces' face counts too
+    return simplify_conversion(t, ref, opt, q);
+  };
+  auto on_strip = [](const QuadMesh& q) {
+    Index n = 0;
+    for (Index g = 0; g < q.face_capacity(); ++g) n += q.is_face_live(g) && q.face_centroid(g).x() > 2;
+    return n;
+  };
+  QuadMesh q, kept;
+  const SimplifyReport r = run(true, q);
+  EXPECT_EQ(r.pieces, 2u);
+  EXPECT_GT(r.chord_collapses, 0u);
+  EXPECT_EQ(on_strip(q), 1u);
+  EXPECT_EQ(r.pieces_above_share, 1u);  // the strip's last quad
+  // Without chords the strip keeps its quads, and the sphere, under its share, is the same.
+  const SimplifyReport without = run(false, kept);
+  EXPECT_EQ(on_strip(kept), 24u);
+  EXPECT_EQ(kept.n_faces() - on_strip(kept), q.n_faces() - on_strip(q));
+  EXPECT_EQ(without.collapses, r.collapses);
+}
+
 TEST(Adaptive, auto_halt_stops_once_the_m_fitmap_blocks_its_share) {
   // F_M graded up the sphere (graded_m()): the blocked share rises steadily.
   TriMesh t = tri_sphere(30, 40);
@@ -336,14 +381,11 @@ TEST(Adaptive, auto_halt_stops_once_the_m_fitmap_blocks_its_share) {
   const ReferenceSurface ref(t);
   const Fitmaps f = graded_m(t, ref.mean_edge_length());
   auto run = [&](double share, Index target, QuadMesh& q) {
-    q = tri_to_quad(t);
     SimplifyOptions opt = adaptive_options(f);
     opt.halt_share = share;
     opt.target_faces = target;
     opt.fine_phase = 0;  // the same smoothing with and without a target: the same run
-    const SimplifyReport r = simplify(q, ref, opt);
-    validate(q);
-    return r;
+    return simplify_conversion(t, ref, opt, q);
   };
   QuadMesh paper, halted, before, same;
   const SimplifyReport until_nothing = run(1.0, 0, paper);  // the paper's rule
@@ -561,12 +603,9 @@ TEST(Adaptive, auto_halt_smooths_lightly_until_near_the_predicted_count) {
   const ReferenceSurface ref(t);
   const Fitmaps f = compute_fitmaps(t);
   auto run = [&](double fine_phase, QuadMesh& q) {
-    q = tri_to_quad(t);
     SimplifyOptions opt = adaptive_options(f);
     opt.fine_phase = fine_phase;
-    const SimplifyReport r = simplify(q, ref, opt);
-    validate(q);
-    return r;
+    return simplify_conversion(t, ref, opt, q);
   };
   QuadMesh light, full;
   const SimplifyReport a = run(2.0, light), b = run(0.0, full);

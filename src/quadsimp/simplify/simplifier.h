@@ -66,6 +66,7 @@ class Simplifier {
     Index next_scan = 0, next_early = 0;
     double base_share = 0;  // blocked before any collapse: not counted towards the halt
   };
+  bool collapse_until(HaltingSchedule& halting, Index& next_mu);
   bool halting_due(HaltingSchedule& h);
   void upkeep(Index& next_mu);
 
@@ -290,6 +291,7 @@ class Simplifier {
                                  : std::numeric_limits<double>::infinity();
   }
   void share_target(const std::vector<double>& piece_area);
+  bool share_halting_count();
   std::vector<std::uint32_t> version_, face_mark_, vertex_mark_;
   // Reference normal under each vertex (at its last projection): faces are checked
   // against these, so that no sequence of small turns can flip a face.

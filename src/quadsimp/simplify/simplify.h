@@ -22,6 +22,9 @@ struct SimplifyOptions {
   //! fewer faces than its share keeps them, and the others share the rest): each piece
   //! stops at its share, so that pieces which cannot shrink to theirs (scan debris) do not
   //! take quads from the others; the run then ends above the target (SimplifyReport::pieces).
+  //! Automatic halting (0 here, adaptive) shares the count it halted at the same way, by
+  //! area in faces of the S-fitmap's sizes, and takes the pieces above their share down
+  //! towards it, chords included (one quad wide scan debris kept its quads otherwise).
   Index target_faces = 0;
   //! Adaptive mode: collapse priority |d| * F_S, collapses limited by F_M; needs fitmaps.
   bool adaptive = false;
@@ -220,8 +223,8 @@ struct SimplifyReport {
   //! Automatic halting: the halting count predicted from the fitmaps before the run
   //! (0 otherwise, or with nothing to go by).
   double predicted_faces = 0;
-  //! With a target and several pieces (see SimplifyOptions::target_faces): the pieces,
-  //! those left above their share of the target, and the faces those hold.
+  //! With several pieces (see SimplifyOptions::target_faces): the pieces, those left
+  //! above their share of the target (or of automatic halting's count), and their faces.
   Index pieces = 0, pieces_above_share = 0, faces_above_share = 0;
   Index refused() const {
     return refused_topology + refused_valence + refused_geometry + refused_fitmap + refused_reach;
