@@ -656,7 +656,9 @@ void Simplifier::set_up() {
 }
 
 // Diagonal collapses from the heap until the target (or automatic halting), then chords
-// and crease doublets while they let more pass. Returns whether automatic halting stopped it.
+// and crease doublets while they let more pass; after automatic halting, the same for the
+// pieces above their share of its count (share_halting_count()). Returns whether
+// automatic halting stopped it.
 bool Simplifier::collapse_all() {
   const Index target = opt_.target_faces;
   if (opt_.fine_phase > 0) {

@@ -22,9 +22,10 @@ struct SimplifyOptions {
   //! fewer faces than its share keeps them, and the others share the rest): each piece
   //! stops at its share, so that pieces which cannot shrink to theirs (scan debris) do not
   //! take quads from the others; the run then ends above the target (SimplifyReport::pieces).
-  //! Automatic halting (0 here, adaptive) shares the count it halted at the same way, by
-  //! area in faces of the S-fitmap's sizes, and takes the pieces above their share down
-  //! towards it, chords included (one quad wide scan debris kept its quads otherwise).
+  //! Automatic halting (0 here, adaptive) shares the count it halted at too, by area in
+  //! faces of the S-fitmap's sizes with no surplus handed on, and takes the pieces above
+  //! their share down towards it, chords included (one quad wide scan debris kept its
+  //! quads otherwise).
   Index target_faces = 0;
   //! Adaptive mode: collapse priority |d| * F_S, collapses limited by F_M; needs fitmaps.
   bool adaptive = false;
