@@ -1420,6 +1420,43 @@ TEST(Metrics, a_quad_bent_past_90_degrees_is_folded) {
   EXPECT_EQ(quad_quality(quad_grid(6, 5)).folded_faces, 0u);
 }
 
+// A quad counts as flipped when the input nearest its centre faces against it, and so does
+// the input nearest two of its corners or more. Over a thin curved shell (two sheets 0.02
+// apart, like a wing's) a quad with its corners on the outer sheet bulges 0.09 below
+// them: its centre is nearest the inner sheet, which faces the other way, yet the quad
+// faces like the sheet its corners are on.
+TEST(Metrics, a_quad_is_flipped_by_the_input_under_its_centre_and_corners) {
+  auto sheet = [](double radius, bool outwards) {
+    TriMesh t = tri_grid(20, 20);
+    for (Vec3& p : t.positions) {
+      const double angle = (p.y() - 0.5) * M_PI / 3;
+      p = Vec3(p.x(), radius * std::sin(angle), radius * std::cos(angle));
+    }
+    if (!outwards)
+      for (auto& f : t.faces) std::swap(f[1], f[2]);
+    return t;
+  };
+  TriMesh shell = sheet(1.0, true);
+  append(shell, sheet(0.98, false));
+  const ReferenceSurface ref(shell);
+  const double a = 25 * M_PI / 180;
+  const std::vector<Vec3> corners = {{0.2, -std::sin(a), std::cos(a)},
+                                     {0.8, -std::sin(a), std::cos(a)},
+                                     {0.8, std::sin(a), std::cos(a)},
+                                     {0.2, std::sin(a), std::cos(a)}};
+  const QuadMesh up = QuadMesh::from_faces(corners, {{0, 1, 2, 3}});
+  const auto q = up.positions_of(up.face_vertices(0));
+  const SurfacePoint centre = ref.closest_to_quad_centre(q.data());
+  ASSERT_TRUE(centre.found());
+  ASSERT_LT(ref.normal_at(centre).z(), 0);  // the inner sheet: the centre alone said flipped
+  EXPECT_EQ(quad_quality(up, &ref).flipped_faces, 0u);
+  // Over a plane, the same quad a little above it counts as flipped when turned over.
+  const ReferenceSurface plane(tri_grid(4, 4));
+  const std::vector<Vec3> square = {{0.2, 0.2, 0.01}, {0.8, 0.2, 0.01}, {0.8, 0.8, 0.01}, {0.2, 0.8, 0.01}};
+  EXPECT_EQ(quad_quality(QuadMesh::from_faces(square, {{0, 1, 2, 3}}), &plane).flipped_faces, 0u);
+  EXPECT_EQ(quad_quality(QuadMesh::from_faces(square, {{3, 2, 1, 0}}), &plane).flipped_faces, 1u);
+}
+
 // A tetrahedron floating beside a scan (debris) converts to two quads on its four corners,
 // back to back: folded, and the least a closed quad mesh has. The quality counts such
 // pieces and the log's note names them, so that a user knows where the folds are.

@@ -129,9 +129,18 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
     const Index partner = two_quad_piece_partner(m, f);
     q.two_quad_pieces += partner != kNone && partner > f;  // counted at the lower of the two
     if (ref) {
+      // Flipped: the surface nearest the centre faces against the quad, and so does the
+      // surface nearest two of its corners or more. The centre alone misjudged quads
+      // whose chord passes under a part thinner than their bulge: pyvista's airplane had
+      // 3 "flipped" quads on its wings, each with every corner on the side facing it
+      // (bench/RESULTS.md, "Flipped quads over thin parts").
       const Vec3 n = quad_normal(p[0], p[1], p[2], p[3]);
-      const SurfacePoint s = ref->closest_to_quad_centre(p.data());
-      q.flipped_faces += s.found() && ref->normal_at(s).dot(n) < 0;
+      auto against = [&](const SurfacePoint& s) { return s.found() && ref->normal_at(s).dot(n) < 0; };
+      if (against(ref->closest_to_quad_centre(p.data()))) {
+        int corners = 0;
+        for (const Vec3& x : p) corners += against(ref->closest(x));
+        q.flipped_faces += corners >= 2;
+      }
     }
   }
   q.homeometry_min = std::min(q.homeometry_min, q.edge_ratio_min);
