@@ -20,7 +20,7 @@ struct QuadQuality {
   double homeometry_min = 0, homeometry_max = 0;
   double edge_ratio_min = 0, edge_ratio_max = 0;  //!< edges only
   Index nonconvex_faces = 0;     //!< some corner turns against the face normal
-  Index flipped_faces = 0;       //!< normal against the reference surface's (needs ref)
+  Index flipped_faces = 0;       //!< facing against the input nearest its centre and two or more corners (needs ref)
   Index folded_faces = 0;        //!< bent by more than 90 degrees along both diagonals
   //! Closed pieces of two quads on the same four corners: the least quad mesh of a tiny
   //! closed part (a tetrahedron of scan debris), folded by nature.
