@@ -89,7 +89,8 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "Adaptive mode only: ignore the target and stop once the faces whose collapses the M-fitmap (or the reach "
        "check, see Reach) refuses cover the halting share of the surface (the paper runs until none is allowed, "
        "which coarsens the rest far past its error balance). Where every remaining collapse is refused first (a "
-       "noisy scan, a small mesh), it stops there, and the log says so."},
+       "noisy scan, a small mesh), it stops there, and the log says so. A mesh of several pieces then shares the "
+       "count it stopped at among them, and pieces above their share (scan debris) go on down towards it."},
       {kSimplify, "HaltShare", "Halting share (automatic halting)", ParamKind::Float, SimplifyParams().halt_share,
        0.001, 1,
        "Automatic halting: the share of the surface the M-fitmap may block, beyond what it blocked before the "
