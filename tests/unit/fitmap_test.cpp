@@ -84,24 +84,21 @@ SimplifyOptions adaptive_options(const Fitmaps& f, Index target = 0) {
   return opt;
 }
 
-// Adaptive simplification of t (fitmaps computed on t).
-SimplifyReport simplify_adaptive(const TriMesh& t, QuadMesh& q, Index target = 0) {
-  const ReferenceSurface ref(t);
-  q = tri_to_quad(t);
-  const Fitmaps f = compute_fitmaps(t);
-  SimplifyOptions opt = adaptive_options(f, target);
-  SimplifyReport r = simplify(q, ref, opt);
-  validate(q);
-  EXPECT_TRUE(shared_diagonals(q).empty());
-  return r;
-}
-
 // t's conversion simplified into q with opt, and checked.
 SimplifyReport simplify_conversion(const TriMesh& t, const ReferenceSurface& ref, const SimplifyOptions& opt,
                                    QuadMesh& q) {
   q = tri_to_quad(t);
   const SimplifyReport r = simplify(q, ref, opt);
   validate(q);
+  return r;
+}
+
+// Adaptive simplification of t (fitmaps computed on t).
+SimplifyReport simplify_adaptive(const TriMesh& t, QuadMesh& q, Index target = 0) {
+  const ReferenceSurface ref(t);
+  const Fitmaps f = compute_fitmaps(t);
+  const SimplifyReport r = simplify_conversion(t, ref, adaptive_options(f, target), q);
+  EXPECT_TRUE(shared_diagonals(q).empty());
   return r;
 }
 

@@ -290,6 +290,7 @@ class Simplifier {
     return opt_.target_faces > 0 ? double(m_.n_faces()) - double(opt_.target_faces)
                                  : std::numeric_limits<double>::infinity();
   }
+  std::vector<double> count_pieces(bool by_size, double& total);
   void share_target(const std::vector<double>& piece_area);
   bool share_halting_count();
   std::vector<std::uint32_t> version_, face_mark_, vertex_mark_;

@@ -415,29 +415,42 @@ void Simplifier::share_target(const std::vector<double>& area) {
   rep_.pieces = pieces;
 }
 
+// Each piece's faces, counted afresh into piece_faces_ (after_change() keeps the count
+// only while there are shares), and its area, or with by_size its area in faces of the
+// target sizes (over the square of the corners' mean size: faces per area go as
+// 1 / size^2); `total` gets the sum over the mesh, added up face by face.
+std::vector<double> Simplifier::count_pieces(bool by_size, double& total) {
+  std::vector<double> sum(component_mu_.size(), 0.0);
+  piece_faces_.assign(component_mu_.size(), 0);
+  total = 0;
+  for (Index f = 0; f < m_.face_capacity(); ++f)
+    if (m_.is_face_live(f)) {
+      double w = 0.5 * m_.face_area_normal(f).norm();
+      if (by_size) {
+        double size = 0;
+        for (Index v : m_.face_vertices(f)) size += 0.25 * size_[v];
+        w /= size * size;
+      }
+      const Index c = component_[m_.vertex(f, 0)];
+      total += w, sum[c] += w, ++piece_faces_[c];
+    }
+  counted_faces_ = m_.n_faces();
+  return sum;
+}
+
 // Automatic halting has no target to share (share_target()), and the halt is one measure
 // over the whole surface: a piece the loop could not shrink kept what it had. Scan
 // debris is such a piece, strips one quad wide that no diagonal collapse shrinks and
 // whose chords ran only towards a target: pymeshlab's face range scan halted at 375
 // quads, 109 of them on its 21 debris pieces (3% of its area; 32 at a target of 375).
 // So once the run halts, each piece gets its share of the count reached, by its area in
-// faces of its target sizes (faces per area go as 1 / size^2); the loop then takes the
-// pieces above theirs down towards it, chords included. Returns whether any piece is above.
+// faces of its target sizes (count_pieces()); the loop then takes the pieces above
+// theirs down towards it, chords included. Returns whether any piece is above.
 bool Simplifier::share_halting_count() {
   const std::size_t pieces = component_mu_.size();
   if (pieces < 2) return false;
-  std::vector<double> weight(pieces, 0.0);
   double total = 0;
-  piece_faces_.assign(pieces, 0);
-  for (Index f = 0; f < m_.face_capacity(); ++f)
-    if (m_.is_face_live(f)) {
-      double size = 0;
-      for (Index v : m_.face_vertices(f)) size += 0.25 * size_[v];
-      const double w = m_.face_area_normal(f).norm() / (size * size);
-      const Index c = component_[m_.vertex(f, 0)];
-      weight[c] += w, total += w, ++piece_faces_[c];
-    }
-  counted_faces_ = m_.n_faces();
+  const std::vector<double> weight = count_pieces(true, total);
   rep_.pieces = Index(pieces);
   share_.resize(pieces);
   bool above = false;
@@ -642,16 +655,7 @@ void Simplifier::set_up() {
     smooth_region(opt_.initial_sweeps);
     update_mu();
   }
-  std::vector<double> piece_area(component_mu_.size(), 0.0);
-  piece_faces_.assign(component_mu_.size(), 0);
-  for (Index f = 0; f < m_.face_capacity(); ++f)
-    if (m_.is_face_live(f)) {
-      const double area = 0.5 * m_.face_area_normal(f).norm();
-      const Index c = component_[m_.vertex(f, 0)];
-      area_ += area, piece_area[c] += area, ++piece_faces_[c];
-    }
-  counted_faces_ = m_.n_faces();
-  share_target(piece_area);
+  share_target(count_pieces(false, area_));
   rebuild_heap();
 }
 
