@@ -116,9 +116,10 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
   Outcome out;
   switch (id) {
     case kSimplify: {
+      const SimplifyParams p = simplify_params_of(params);
+      const int texture_size = texture_size_of(params);
       MeshFile file = layer_file(m, textures, images);
-      const LayerQuads q =
-          run_simplification(std::move(file), name, simplify_params_of(params), progress_of(cb), out, images);
+      const LayerQuads q = run_simplification(std::move(file), name, p, progress_of(cb), out, images, texture_size);
       auto* result = md.addNewMesh("", QString::fromStdString(name + " quads"), true);
       assign_quads(result->cm, q.mesh, q.split);
       store_texture(q, m, result, textures, name, out);
@@ -131,8 +132,10 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
       break;
     }
     case kConvert: {
+      const int texture_size = texture_size_of(params);
       MeshFile file = layer_file(m, textures, images);
-      const LayerQuads q = run_conversion(std::move(file), name, params.getFloat("CreaseAngle"), out, images);
+      const LayerQuads q =
+          run_conversion(std::move(file), name, params.getFloat("CreaseAngle"), out, images, texture_size);
       std::optional<SurfaceColours<Mesh>> colours;
       if (coloured) colours.emplace(m->cm, vertex_coloured, face_coloured);
       assign_quads(m->cm, q.mesh, q.split);

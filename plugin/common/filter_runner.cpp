@@ -35,12 +35,15 @@ void describe_input(const Input& in, const std::string& name, Outcome& o) {
 
 // The prepared (and simplified) input's quads, each split as MeshLab will draw it, with the
 // input's texture (Input::source) baked onto them that way.
-LayerQuads quads_of(Input& in, const std::vector<Image>& images) {
+LayerQuads quads_of(Input& in, const std::vector<Image>& images, int texture_size, Outcome& o) {
   LayerQuads out;
   TextureBakeOptions options;
+  options.max_side = texture_size;
   options.split = split_diagonals(in.quads);
-  if (!in.source.texture.empty())
+  if (!in.source.texture.empty()) {
     out.texture = bake_texture(in.source.positions, in.source.texture, images, in.quads, options);
+    if (std::string note = oversize_note(out.texture, texture_size); !note.empty()) o.log.push_back(std::move(note));
+  }
   out.split = std::move(options.split);
   out.mesh = std::move(in.quads);
   return out;
@@ -49,7 +52,8 @@ LayerQuads quads_of(Input& in, const std::vector<Image>& images) {
 }  // namespace
 
 LayerQuads run_simplification(MeshFile layer, const std::string& name, const SimplifyParams& params,
-                              const ProgressFn& progress, Outcome& o, const std::vector<Image>& images) {
+                              const ProgressFn& progress, Outcome& o, const std::vector<Image>& images,
+                              int texture_size) {
   const auto t0 = std::chrono::steady_clock::now();
   Input in = prepare_input(std::move(layer), name, convert_options(params), log_into(o));
   describe_input(in, name, o);
@@ -63,11 +67,11 @@ LayerQuads run_simplification(MeshFile layer, const std::string& name, const Sim
   for (std::string& note : result_notes(r, q, r.target_faces)) o.log.push_back(std::move(note));
   o.values = {{"faces", q.faces}, {"vertices", q.vertices}, {"regular_percent", q.regular_percent},
               {"max_valence", q.max_valence}, {"seconds", s}};
-  return quads_of(in, images);
+  return quads_of(in, images, texture_size, o);
 }
 
 LayerQuads run_conversion(MeshFile layer, const std::string& name, double crease_angle, Outcome& o,
-                          const std::vector<Image>& images) {
+                          const std::vector<Image>& images, int texture_size) {
   SimplifyParams params;  // checked as the simplification's
   params.target_faces = 1;
   params.crease_angle = crease_angle;
@@ -75,7 +79,7 @@ LayerQuads run_conversion(MeshFile layer, const std::string& name, double crease
   Input in = prepare_input(std::move(layer), name, convert_options(params), log_into(o));
   describe_input(in, name, o);
   o.values = {{"faces", in.quads.n_faces()}, {"pairing_rate", in.convert.pairing_rate()}};
-  return quads_of(in, images);
+  return quads_of(in, images, texture_size, o);
 }
 
 Fitmaps run_fitmaps(const MeshFile& layer, const std::string& name, double tau, const ProgressFn& progress,

@@ -31,15 +31,17 @@ struct LayerQuads {
 
 //! Prepares `layer` (cleaning, conversion) and simplifies it; a layer with a texture
 //! (MeshFile::texture, whose images are `images`) gets it baked onto the quads, as the CLI
-//! bakes it. \throw InvalidInput.
+//! bakes it, in an atlas at most `texture_size` texels across (TextureBakeOptions::max_side).
+//! \throw InvalidInput.
 LayerQuads run_simplification(MeshFile layer, const std::string& name, const SimplifyParams& params,
-                              const ProgressFn& progress, Outcome& outcome, const std::vector<Image>& images = {});
+                              const ProgressFn& progress, Outcome& outcome, const std::vector<Image>& images = {},
+                              int texture_size = TextureBakeOptions().max_side);
 
 //! Prepares `layer` and returns its quads, with its texture as run_simplification() does;
 //! no pair is made across an edge sharper than `crease_angle` degrees (0: none).
 //! \throw InvalidInput; std::invalid_argument for an angle outside [0, 180).
 LayerQuads run_conversion(MeshFile layer, const std::string& name, double crease_angle, Outcome& outcome,
-                          const std::vector<Image>& images = {});
+                          const std::vector<Image>& images = {}, int texture_size = TextureBakeOptions().max_side);
 
 //! S and M fitmaps at the layer's own vertices (cleaning may merge or drop vertices,
 //! so each one reads the field at its closest point on the cleaned surface).

@@ -5,10 +5,17 @@
 #include <stdexcept>
 
 #include "quadsimp/simplify/pipeline.h"
+#include "quadsimp/texture/texture_bake.h"
 
 namespace qs::plugin {
 
 namespace {
+const double kTextureSide = TextureBakeOptions().max_side;
+const char* const kTextureSizeHelp =
+    "A textured layer only: the largest width and height, in texels, of the texture baked onto the quads (the "
+    "CLI's --texture-size). Their tiles shrink alike to fit, down to 3 texels a side: the texture of very many "
+    "quads can be larger, and the log then says so. 4096: 64 MB in memory, which graphics cards and MeshLab's "
+    "default texture memory take whole.";
 const std::string kCitation =
     "<br><br>See: <i>G. Bozzo, D. Panozzo, E. Puppo, N. Pietroni, L. Rocca</i>, <b>\"Adaptive Quad Mesh "
     "Simplification\"</b>, Eurographics Italian Chapter Conference 2010.";
@@ -137,9 +144,13 @@ std::vector<ParamSpec> params_of(FilterId id) {
        "Afterwards, move each vertex along its normal, off the input surface, so that the quads lie as close to it "
        "as they can both ways (least squares, ours): about 30% lower RMS distance. Off: every vertex stays on the "
        "input, as in the paper."},
+      {kSimplify, "TextureSize", "Texture size", ParamKind::Int, kTextureSide, TextureBakeOptions::kSmallestSide,
+       TextureBakeOptions::kLargestSide, kTextureSizeHelp},
       {kConvert, "CreaseAngle", "Crease angle", ParamKind::Float, SimplifyParams().crease_angle, 0, 179,
        "Pair no triangles across edges sharper than this many degrees (the angle between the normals of the faces "
        "beside them), so that they are edges of the quads. 0: none."},
+      {kConvert, "TextureSize", "Texture size", ParamKind::Int, kTextureSide, TextureBakeOptions::kSmallestSide,
+       TextureBakeOptions::kLargestSide, kTextureSizeHelp},
       {kFitmaps, "Tau", "Fitmap tolerance tau", ParamKind::Float, FitmapOptions().tau, 0.001, 0.5,
        "Share of a neighbourhood allowed to face against its fitted plane before the M-fitmap stops growing."},
       {kQuality, "ReferenceMesh", "Reference mesh", ParamKind::Mesh, 0, 0, 0,

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -189,6 +190,18 @@ SimplifyParams simplify_params_of(const ParameterList& params) {
   p.fit_to_input = params.getBool("FitToInput");
   if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
   return p;
+}
+
+//! The Texture size parameter (either generation's list), checked against the range the
+//! CLI takes. \throw std::invalid_argument.
+template <class ParameterList>
+int texture_size_of(const ParameterList& params) {
+  const int side = params.getInt("TextureSize");
+  if (side < TextureBakeOptions::kSmallestSide || side > TextureBakeOptions::kLargestSide)
+    throw std::invalid_argument("the texture size must be from " + std::to_string(TextureBakeOptions::kSmallestSide) +
+                                " to " + std::to_string(TextureBakeOptions::kLargestSide) + " texels, not " +
+                                std::to_string(side));
+  return side;
 }
 
 //! Fitmaps of the live vertices (in order) into the attributes FitmapS and FitmapM,

@@ -113,7 +113,9 @@ QuadTexture texture_for(const std::string& output, const Input& in, int size, co
   try {
     TextureBakeOptions options;
     options.max_side = size;
-    return texture_of_quads(in.source, in.quads, options);
+    QuadTexture t = texture_of_quads(in.source, in.quads, options);
+    if (const std::string note = oversize_note(t, size); log && !note.empty()) log(output + ": " + note);
+    return t;
   } catch (const InvalidInput& e) {
     if (log) log(std::string(e.what()) + ": the quads are written without a texture");
     return {};

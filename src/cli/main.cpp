@@ -37,7 +37,7 @@ void add_texture_size(CLI::App* command, int& size) {
   command->add_option("--texture-size", size,
                       "the largest width and height of the quads' texture, baked from the input's (OBJ, PLY output)")
       ->capture_default_str()
-      ->check(CLI::Range(16, 16384));
+      ->check(CLI::Range(qs::TextureBakeOptions::kSmallestSide, qs::TextureBakeOptions::kLargestSide));
 }
 
 // --remesh, and --remesh-edge PCT with it.

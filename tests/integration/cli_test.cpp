@@ -337,6 +337,17 @@ TEST_F(Cli, a_texture_reaches_obj_and_ply_quads) {
   const Image small = read_image(texture_path_of(p("small.obj")));
   EXPECT_LE(std::max(small.width, small.height), 64);
   EXPECT_GE(std::max(small.width, small.height), 13 * 3);  // 13 tiles a row, of 3 texels at least
+  // A size the quads' least tiles cannot keep to is passed, and the log says so.
+  const CliRun tiny = run("simplify " + in + " " + p("tiny.obj") + " --faces 150 --texture-size 16");
+  ASSERT_EQ(tiny.code, 0) << tiny.out;
+  const Image over = read_image(texture_path_of(p("tiny.obj")));
+  EXPECT_GT(std::max(over.width, over.height), 16);
+  EXPECT_NE(tiny.out.find("tiny.obj: the quads' texture is " + std::to_string(over.width) + " x " +
+                          std::to_string(over.height) + " texels, past the texture size of 16: too many quads"),
+            std::string::npos)
+      << tiny.out;
+  const CliRun within = run("simplify " + in + " " + p("small2.obj") + " --faces 150 --texture-size 64");
+  EXPECT_EQ(within.out.find("past the texture size"), std::string::npos) << within.out;
   EXPECT_EQ(run("convert " + in + " " + p("c2.obj") + " --texture-size 8").code, 2);
   const CliRun r = run("simplify " + in + " " + p("plain.off") + " --faces 150");
   ASSERT_EQ(r.code, 0) << r.out;

@@ -36,7 +36,8 @@ for f in "Quad Mesh Simplification" "Convert to Pure Quad Mesh" "Compute Fitmaps
 done
 for p in "Adaptive (fitmaps)" "Target number of quads" "Automatic halting (adaptive)" \
          "Halting share (automatic halting)" "Fitmap tolerance tau" "Largest aspect (adaptive)" "Reach (adaptive)" \
-         "Preserve boundary" "Keep tips" "Crease angle" "Fast (one pass)" "Fit vertices to the input" "Reference mesh" "Distance samples"; do
+         "Preserve boundary" "Keep tips" "Crease angle" "Fast (one pass)" "Fit vertices to the input" "Texture size" \
+         "Reference mesh" "Distance samples"; do
   grep -q "$p" "$work/dump.txt" || fail "parameter '$p' missing from meshlabserver -d"
 done
 
@@ -321,6 +322,7 @@ cat >"$work/others.mlx" <<'MLX'
 <FilterScript>
  <filter name="Convert to Pure Quad Mesh">
   <Param name="CreaseAngle" type="RichFloat" value="0"/>
+  <Param name="TextureSize" type="RichInt" value="4096"/>
  </filter>
  <filter name="Compute Fitmaps">
   <Param name="Tau" type="RichFloat" value="0.05"/>
@@ -356,6 +358,7 @@ planarity='<filter name="Per Face Quality according to Triangle shape and aspect
  </filter>'
 convert='<filter name="Convert to Pure Quad Mesh">
   <Param name="CreaseAngle" type="RichFloat" value="0"/>
+  <Param name="TextureSize" type="RichInt" value="4096"/>
  </filter>'
 for first in "${simplification/value=\"3000\"/value=\"500\"}" "$convert"; do
   printf '<!DOCTYPE FilterScript>\n<FilterScript>\n%s\n %s\n</FilterScript>\n' "$first" "$planarity" >"$work/planar.mlx"
@@ -539,6 +542,18 @@ if server -i "$work/tex/lonlat.ply" -o "$work/tex/again.ply" -m wt -s "$work/tex
   echo "ok: a second result's texture does not replace the first's"
 else
   fail "a second result's texture replaced the first's"; cat "$work/server.log"
+fi
+# The texture size from a script bounds the quads' texture, which is wider by default.
+texels() { sed -n 's/.*texture baked onto the quads: [^,]*, \([0-9]*\) x \([0-9]*\) texels.*/\1 \2/p' "$1"; }
+cp "$work/server.log" "$work/tex_default.log"
+sed 's/name="TextureSize" type="RichInt" value="4096"/name="TextureSize" type="RichInt" value="128"/' \
+  "$work/tex.mlx" >"$work/tex128.mlx"
+if server -i "$work/tex/lonlat.ply" -o "$work/tex/small.ply" -m wt -s "$work/tex128.mlx" &&
+   read -r w h <<<"$(texels "$work/server.log")" && read -r dw dh <<<"$(texels "$work/tex_default.log")" &&
+   [ "$w" -le 128 ] && [ "$h" -le 128 ] && [ "$dw" -gt 128 ]; then
+  echo "ok: the texture size bounds the quads' texture ($w x $h texels; $dw x $dh by default)"
+else
+  fail "the texture size did not bound the quads' texture"; cat "$work/server.log"
 fi
 
 # 11. A crease angle from a script: a cube keeps its 8 corners and its edges (no distance

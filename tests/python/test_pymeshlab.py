@@ -3,6 +3,8 @@
 import json
 import os
 import pathlib
+import re
+import struct
 import subprocess
 import sys
 
@@ -338,6 +340,37 @@ def test_a_textured_layer_gives_quads_with_its_texture(tmp_path, capfd, convert)
     ms.set_current_mesh(1)
     ms.save_current_mesh(str(tmp_path / "quads.obj"))
     assert len(list(tmp_path.glob("lonlat*_quads_texture.png"))) == 1
+
+
+@pytest.mark.parametrize("convert", [False, True])
+def test_the_texture_size_bounds_the_quads_texture(tmp_path, capfd, convert):
+    """`texturesize` (the CLI's --texture-size) bounds the baked texture's width and height, as the log gives
+    them and as saving the layer writes the image; the default one is wider on the same sphere. A size too small
+    for the quads' least tiles (3 texels a side) is passed, and the log says so. (Sizes the CLI refuses are
+    refused: test_bad_input_raises_a_python_exception.)"""
+    sphere = textured_sphere(tmp_path)
+    ms = pymeshlab.MeshSet(verbose=True)
+    sides = {}
+    for size in (None, 256, 32):
+        ms.load_new_mesh(str(sphere))
+        args = {} if size is None else {"texturesize": size}
+        if convert:
+            ms.meshing_tri_to_pure_quad(**args)
+        else:
+            ms.meshing_quad_mesh_simplification(targetfacenum=600, **args)
+        err = capfd.readouterr().err
+        found = re.findall(r"texture baked onto the quads: \S+, (\d+) x (\d+) texels", err)
+        assert len(found) == 1, found
+        assert ("past the texture size of 32: too many quads" in err) == (size == 32), err
+        folder = tmp_path / f"quads_{size}"
+        folder.mkdir()
+        ms.save_current_mesh(str(folder / "quads.obj"))
+        (png,) = folder.glob("*.png")
+        with open(png, "rb") as f:
+            width, height = struct.unpack(">II", f.read(24)[16:24])
+        assert (width, height) == tuple(map(int, found[0]))
+        sides[size] = max(width, height)
+    assert sides[256] <= 256 < sides[None] <= 4096 and sides[32] > 32, sides
 
 
 def test_texture_coordinates_without_a_texture_are_not_carried(capfd):
@@ -799,3 +832,8 @@ def test_bad_input_raises_a_python_exception():
     with pytest.raises(pymeshlab.PyMeshLabException) as e:
         ms2.meshing_quad_mesh_simplification(adaptive=True, autohalt=True, haltshare=0)
     assert "halting share" in str(e.value)
+    for size in (8, 20000):  # the CLI's --texture-size takes 16 to 16384
+        for run in (ms2.meshing_quad_mesh_simplification, ms2.meshing_tri_to_pure_quad):
+            with pytest.raises(pymeshlab.PyMeshLabException) as e:
+                run(texturesize=size)
+            assert "texture size must be from 16 to 16384 texels, not " + str(size) in str(e.value)

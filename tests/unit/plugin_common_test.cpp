@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -343,6 +344,7 @@ TEST(PluginParams, the_dialogs_defaults_are_the_clis) {
   EXPECT_EQ(p.crease_angle, cli.crease_angle);
   EXPECT_EQ(p.fast, cli.fast);
   EXPECT_EQ(p.fit_to_input, cli.fit_to_input);
+  EXPECT_EQ(texture_size_of(list), TextureBakeOptions().max_side);  // the CLI's --texture-size
   // Every parameter the dialog shows is read, and nothing else.
   std::set<std::string> declared;
   for (const ParamSpec& s : params_of(kSimplify)) declared.insert(s.key);
@@ -395,6 +397,8 @@ TEST(PluginParams, each_parameter_reaches_its_own_field) {
   list["Adaptive"] = 1, list["TargetFaceNum"] = 321, list["HaltShare"] = 0.5, list["Tau"] = 0.125;
   list["MaxAspect"] = 2, list["Reach"] = 0.25, list["PreserveBoundary"] = 1, list["KeepTips"] = 1;
   list["Fast"] = 1, list["FitToInput"] = 1, list["TargetPerc"] = 0.375, list["CreaseAngle"] = 42;
+  list["TextureSize"] = 512;
+  EXPECT_EQ(texture_size_of(list), 512);
   SimplifyParams p = simplify_params_of(list);
   EXPECT_EQ(p.crease_angle, 42);
   EXPECT_TRUE(p.adaptive);
@@ -426,6 +430,13 @@ TEST(PluginParams, combinations_the_run_cannot_take_are_refused) {
   EXPECT_THROW(simplify_params_of(list), std::invalid_argument);
   list["TargetPerc"] = 0.5, list["TargetFaceNum"] = -3;  // a share is a target without a number
   EXPECT_NO_THROW(simplify_params_of(list));
+  // The texture sizes the CLI refuses.
+  for (const int side : {15, 16385, 0}) {
+    list["TextureSize"] = side;
+    EXPECT_THROW(texture_size_of(list), std::invalid_argument) << side;
+  }
+  list["TextureSize"] = 16;
+  EXPECT_EQ(texture_size_of(list), 16);
 }
 
 TEST(PluginSpecs, names_are_unique_and_defaults_in_range) {
@@ -606,6 +617,45 @@ TEST(PluginRunner, simplification_logs_what_it_did_and_matches_the_pipeline) {
   EXPECT_EQ(c.values.at("faces"), converted.n_faces());
   EXPECT_GT(c.values.at("pairing_rate"), 0.9);
   EXPECT_NO_THROW(validate(converted));
+}
+
+// A sphere textured by longitude and height: the texture baked onto its quads is as wide
+// as the input's texel density asks by default, and within the texture size given (both
+// the simplification's and the conversion's).
+TEST(PluginRunner, the_texture_size_bounds_the_quads_texture) {
+  const TriMesh t = tri_sphere(16, 24);
+  MeshFile layer{t.positions, t.faces, {}};
+  layer.texture_coordinates = true;
+  layer.texture.images = {"card"};
+  for (const auto& f : t.faces) {
+    std::array<TexCoord, 3> uv;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = t.positions[f[k]].normalized();
+      uv[k] = {float(0.5 + std::atan2(p.y(), p.x()) / (2 * M_PI)), float(0.5 + 0.5 * p.z())};
+    }
+    layer.texture.triangles.push_back(f);
+    layer.texture.coords.push_back(uv);
+    layer.texture.image.push_back(0);
+  }
+  Image card;
+  card.width = card.height = 1024;
+  card.rgba.assign(4u * 1024 * 1024, 200);
+  SimplifyParams params;
+  params.target_faces = 200;
+  const auto side = [](const LayerQuads& q) { return std::max(q.texture.image.width, q.texture.image.height); };
+  Outcome o;
+  const LayerQuads wide = run_simplification(layer, "ball", params, {}, o, {card});
+  const LayerQuads narrow = run_simplification(layer, "ball", params, {}, o, {card}, 128);
+  ASSERT_FALSE(wide.texture.empty());
+  ASSERT_FALSE(narrow.texture.empty());
+  EXPECT_GT(side(wide), 128);
+  EXPECT_LE(side(wide), TextureBakeOptions().max_side);
+  EXPECT_LE(side(narrow), 128);
+  EXPECT_EQ(quads_of(wide.mesh), quads_of(narrow.mesh));  // the quads are the same
+  const LayerQuads converted = run_conversion(layer, "ball", 0, o, {card}, 64);
+  ASSERT_FALSE(converted.texture.empty());
+  EXPECT_GT(side(run_conversion(layer, "ball", 0, o, {card})), 64);
+  EXPECT_LE(side(converted), 64);
 }
 
 TEST(PluginRunner, a_crease_angle_reaches_the_conversion_and_the_simplification) {

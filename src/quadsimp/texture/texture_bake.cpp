@@ -205,4 +205,11 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
   return out;
 }
 
+std::string oversize_note(const QuadTexture& t, int max_side) {
+  if (std::max(t.image.width, t.image.height) <= max_side) return {};
+  return "the quads' texture is " + std::to_string(t.image.width) + " x " + std::to_string(t.image.height) +
+         " texels, past the texture size of " + std::to_string(max_side) +
+         ": too many quads for it at 3 texels a side, the least a tile takes";
+}
+
 }  // namespace qs
