@@ -49,7 +49,7 @@ print(ms.current_mesh().face_number())
 def make_part(python, model, path):
     """Writes CAD part `model` to `path` (binary PLY) with pymeshlab; returns its triangle count."""
     out = subprocess.run([python, "-c", MAKE, model, path], check=True, capture_output=True, text=True)
-    return out.stdout.strip().splitlines()[-1]
+    return int(out.stdout.strip().splitlines()[-1])
 
 
 def cells(j):

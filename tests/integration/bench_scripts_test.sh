@@ -15,9 +15,9 @@ failures=0
 check() {  # script model rows [more options]: the rows the script must print for the model
   local script=$1 model=$2 rows=$3 out n
   shift 3
-  # open_scans.py and cad_parts.py make their inputs and read no dataset.
+  # Scripts that make their inputs read no dataset.
   local from=(--datasets "$datasets")
-  [ "$script" = open_scans ] || [ "$script" = cad_parts ] && from=()
+  case " open_scans cad_parts " in *" $script "*) from=() ;; esac
   if ! out=$(python3 "$repo/bench/$script.py" --quadsimp "$cli" "${from[@]}" --models "$model" \
                --samples 2000 "$@" 2>&1); then
     echo "FAIL: $script.py exited with an error:"; echo "$out"; failures=$((failures + 1)); return
