@@ -15,7 +15,7 @@ source "$here/tests/integration/meshlab_env.sh"
 ml_env_setup "$plugin"
 mesh=$(ml_bunny_ply "$here/../shared/datasets" "$here/build/src/quadsimp" "$ML_ROOT/bunny.ply")
 display=:$((90 + RANDOM % 100))
-Xvfb "$display" -screen 0 1280x900x24 >/dev/null 2>&1 &
+Xvfb "$display" -screen 0 1280x1400x24 >/dev/null 2>&1 &  # tall enough for the whole dialog
 xvfb=$!
 export DISPLAY=$display
 sleep 1
@@ -32,11 +32,12 @@ sleep 1
 import -window root -crop 853x725+0+0 "$here/docs/meshlab_filters_menu.png"
 xdotool mousemove 560 211 && sleep 0.3 && xdotool mousemove 622 211 click 1
 sleep 2
-import -window root -crop 853x725+0+0 "$here/docs/meshlab_simplification_dialog.png"
+# The dialog whole, every parameter shown: its geometry grows with its parameters.
+eval "$(xdotool search --name "Quad Mesh Simplification" getwindowgeometry --shell | tail -n 6)"
+import -window root -crop "${WIDTH}x$((Y + HEIGHT))+0+0" "$here/docs/meshlab_simplification_dialog.png"
 # Apply with the defaults, close the dialog, and show the new layer as a wireframe
 # (MeshLab hides faux edges there, so the quads show). Apply and Close are the dialog's
-# bottom row, right and left: found from its geometry, which grows with its parameters.
-eval "$(xdotool search --name "Quad Mesh Simplification" getwindowgeometry --shell | tail -n 6)"
+# bottom row, right and left.
 xdotool mousemove $((X + 3 * WIDTH / 4)) $((Y + HEIGHT - 18)) click 1   # Apply
 sleep 6
 xdotool mousemove $((X + WIDTH / 4)) $((Y + HEIGHT - 18)) click 1   # Close
