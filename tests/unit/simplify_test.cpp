@@ -1457,6 +1457,40 @@ TEST(Metrics, a_quad_is_flipped_by_the_input_under_its_centre_and_corners) {
   EXPECT_EQ(quad_quality(QuadMesh::from_faces(square, {{3, 2, 1, 0}}), &plane).flipped_faces, 1u);
 }
 
+// A coarse CAD cone (33 segments, its base a fan from one rim vertex) has vertex normals
+// that mix its rim's two sides over its long triangles: by the rim its base's interpolated
+// normal faces up. A quad lying flat on the base there, facing down like it, follows the
+// triangles under it and is not flipped; turned over, it is. By the interpolated normals
+// alone it was the other way round.
+TEST(Metrics, a_quad_flat_on_a_coarse_triangle_follows_it_whatever_the_vertex_normals) {
+  constexpr int kSegments = 33;
+  TriMesh cone;
+  for (int i = 0; i < kSegments; ++i) {
+    const double a = 2 * M_PI * i / kSegments;
+    cone.positions.push_back({std::cos(a), std::sin(a), 0});
+  }
+  cone.positions.push_back({0, 0, 2});
+  for (Index i = 0; i < kSegments; ++i) cone.faces.push_back({i, (i + 1) % kSegments, Index(kSegments)});
+  for (Index i = 1; i + 1 < kSegments; ++i) cone.faces.push_back({0, i + 1, i});
+  const ReferenceSurface ref(cone);
+  auto at = [](double radius, double degrees) {
+    const double a = degrees * M_PI / 180;
+    return Vec3(radius * std::cos(a), radius * std::sin(a), 0);
+  };
+  const std::vector<Vec3> corners = {at(0.90, -54), at(0.90, -46), at(0.97, -46), at(0.97, -54)};
+  const QuadMesh down = QuadMesh::from_faces(corners, {{0, 1, 2, 3}});
+  const auto q = down.positions_of(down.face_vertices(0));
+  ASSERT_LT(down.face_area_normal(0).z(), 0);
+  // The interpolated normals under its centre and two corners or more face up: by them
+  // alone, flipped.
+  ASSERT_GT(ref.normal_at(ref.closest_to_quad_centre(q.data())).z(), 0);
+  int up = 0;
+  for (const Vec3& x : q) up += ref.normal_at(ref.closest(x)).z() > 0;
+  ASSERT_GE(up, 2);
+  EXPECT_EQ(quad_quality(down, &ref).flipped_faces, 0u);
+  EXPECT_EQ(quad_quality(QuadMesh::from_faces(corners, {{3, 2, 1, 0}}), &ref).flipped_faces, 1u);
+}
+
 // A tetrahedron floating beside a scan (debris) converts to two quads on its four corners,
 // back to back: folded, and the least a closed quad mesh has. The quality counts such
 // pieces and the log's note names them, so that a user knows where the folds are.

@@ -134,8 +134,22 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
       // whose chord passes under a part thinner than their bulge: pyvista's airplane had
       // 3 "flipped" quads on its wings, each with every corner on the side facing it
       // (bench/RESULTS.md, "Flipped quads over thin parts").
+      // Where the nearest point is inside a triangle, away from its edges, and the quad lies
+      // within 30 degrees of that triangle's plane, the triangle's own normal says which way
+      // the input faces there, not the interpolated one: over a coarse CAD mesh's long
+      // triangles the vertex normals mix a sharp rim's two sides, and a cone of 33 segments
+      // whose base is a fan from one rim vertex, remeshed and simplified, had 29 "flipped"
+      // quads against its file (bench/RESULTS.md, "Flipped quads over coarse CAD
+      // triangles"). Steeper quads, and points on an edge, whose triangles disagree, are left
+      // to the interpolated normal.
       const Vec3 n = quad_normal(p[0], p[1], p[2], p[3]);
-      auto against = [&](const SurfacePoint& s) { return s.found() && ref->normal_at(s).dot(n) < 0; };
+      const double cos30 = 0.5 * std::sqrt(3.0) * n.norm();  // times |n|, as `along` is
+      auto against = [&](const SurfacePoint& s) {
+        if (!s.found()) return false;
+        const double along = ref->face_normal(s.face).dot(n);
+        if (std::abs(along) > cos30 && std::min({s.u, s.v, 1 - s.u - s.v}) > 1e-6) return along < 0;
+        return ref->normal_at(s).dot(n) < 0;
+      };
       if (against(ref->closest_to_quad_centre(p.data()))) {
         int corners = 0;
         for (const Vec3& x : p) corners += against(ref->closest(x));
