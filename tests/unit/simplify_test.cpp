@@ -1463,16 +1463,7 @@ TEST(Metrics, a_quad_is_flipped_by_the_input_under_its_centre_and_corners) {
 // triangles under it and is not flipped; turned over, it is. By the interpolated normals
 // alone it was the other way round.
 TEST(Metrics, a_quad_flat_on_a_coarse_triangle_follows_it_whatever_the_vertex_normals) {
-  constexpr int kSegments = 33;
-  TriMesh cone;
-  for (int i = 0; i < kSegments; ++i) {
-    const double a = 2 * M_PI * i / kSegments;
-    cone.positions.push_back({std::cos(a), std::sin(a), 0});
-  }
-  cone.positions.push_back({0, 0, 2});
-  for (Index i = 0; i < kSegments; ++i) cone.faces.push_back({i, (i + 1) % kSegments, Index(kSegments)});
-  for (Index i = 1; i + 1 < kSegments; ++i) cone.faces.push_back({0, i + 1, i});
-  const ReferenceSurface ref(cone);
+  const ReferenceSurface ref(cad_cone(33, true));
   auto at = [](double radius, double degrees) {
     const double a = degrees * M_PI / 180;
     return Vec3(radius * std::cos(a), radius * std::sin(a), 0);
