@@ -371,6 +371,37 @@ TEST(Adaptive, auto_halt_takes_debris_down_to_its_share_of_the_count) {
   EXPECT_EQ(without.collapses, r.collapses);
 }
 
+TEST(Adaptive, auto_halt_shares_its_count_by_the_faces_the_sizes_ask_for) {
+  // Two spheres alike but for F_S, twice as large on the second, whose sizes so ask for
+  // four times the quads. Both have the same F_M (graded as graded_m()'s): the first
+  // sphere's larger quads meet it first, and its blocked faces halt the run while the
+  // second still has collapses left. Shared by the sizes, the count leaves the second its
+  // quads and takes the first on down until F_M holds it (measured: 261 and 795 quads);
+  // shared by area (the first version of the share), the second was taken down to about
+  // half of the count instead (393 and 596).
+  TriMesh t = tri_sphere(30, 40);
+  TriMesh other = t;
+  for (Vec3& p : other.positions) p.x() += 3;
+  append(t, other);
+  clean(t);
+  const ReferenceSurface ref(t);
+  Fitmaps f = compute_fitmaps(t);
+  const double mu = ref.mean_edge_length();
+  for (Index v = 0; v < t.n_vertices(); ++v) {
+    f.s[v] = t.positions[v].x() > 1.5 ? 2.f : 1.f;
+    f.m[v] = float((3 + 2 * t.positions[v].z()) * mu);
+  }
+  QuadMesh q;
+  const SimplifyReport r = simplify_conversion(t, ref, adaptive_options(f), q);
+  Index second = 0;
+  for (Index g = 0; g < q.face_capacity(); ++g) second += q.is_face_live(g) && q.face_centroid(g).x() > 1.5;
+  const Index first = q.n_faces() - second;
+  EXPECT_EQ(r.pieces, 2u);
+  EXPECT_FALSE(r.ran_out);
+  EXPECT_GT(second, 2 * first) << first << " and " << second << " quads";
+  EXPECT_EQ(r.pieces_above_share, 1u);  // the first, held above its share by F_M
+}
+
 TEST(Adaptive, auto_halt_stops_once_the_m_fitmap_blocks_its_share) {
   // F_M graded up the sphere (graded_m()): the blocked share rises steadily.
   TriMesh t = tri_sphere(30, 40);
