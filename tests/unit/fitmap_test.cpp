@@ -377,8 +377,8 @@ TEST(Adaptive, auto_halt_shares_its_count_by_the_faces_the_sizes_ask_for) {
   // sphere's larger quads meet it first, and its blocked faces halt the run while the
   // second still has collapses left. Shared by the sizes, the count leaves the second its
   // quads and takes the first on down until F_M holds it (measured: 261 and 795 quads);
-  // shared by area (the first version of the share), the second was taken down to about
-  // half of the count instead (393 and 596).
+  // shared by area, as a face target is (share_target()), the second was taken down to
+  // about half of the count instead (393 and 596; a scratch build).
   TriMesh t = tri_sphere(30, 40);
   TriMesh other = t;
   for (Vec3& p : other.positions) p.x() += 3;
