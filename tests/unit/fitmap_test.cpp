@@ -385,7 +385,7 @@ TEST(Adaptive, auto_halt_shares_its_count_by_the_faces_the_sizes_ask_for) {
   append(t, other);
   clean(t);
   const ReferenceSurface ref(t);
-  Fitmaps f = compute_fitmaps(t);
+  Fitmaps f{std::vector<float>(t.n_vertices()), std::vector<float>(t.n_vertices())};  // both set below
   const double mu = ref.mean_edge_length();
   for (Index v = 0; v < t.n_vertices(); ++v) {
     f.s[v] = t.positions[v].x() > 1.5 ? 2.f : 1.f;
