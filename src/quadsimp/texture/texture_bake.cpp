@@ -83,15 +83,16 @@ Atlas pack(const std::vector<int>& sizes, int width) {
 // Where each quad's tile goes. A tile holds as many texels as the input's images spend on
 // the quad's area (`texels_per_area`, the input's texel density), so that a large quad's
 // texture is no coarser than a small one's: 6 to 256 texels a side. Where the atlas would pass
-// options.max_side, every tile shrinks alike (to 3 texels at least). options.tile gives
-// every quad that size, in a square grid.
+// options.max_side, every tile shrinks alike (to kLeastTile texels at least). options.tile
+// gives every quad that size, in a square grid.
 Atlas layout(const QuadMesh& quads, const std::vector<Index>& faces, const TextureBakeOptions& options,
              double texels_per_area) {
   const std::size_t n = faces.size();
   if (options.tile > 0) {
     const int columns = int(std::ceil(std::sqrt(double(n))));
     const int rows = int((n + std::size_t(columns) - 1) / std::size_t(columns));
-    const int tile = std::max(3, std::min(options.tile, options.max_side / std::max(columns, rows)));
+    const int fit = options.max_side / std::max(columns, rows);
+    const int tile = std::max(TextureBakeOptions::kLeastTile, std::min(options.tile, fit));
     return pack(std::vector<int>(n, tile), columns * tile);
   }
   std::vector<double> side(n);  // each quad's size: the root of its area
@@ -102,7 +103,8 @@ Atlas layout(const QuadMesh& quads, const std::vector<Index>& faces, const Textu
     double texels = 0;
     int largest = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      // Inside the border: 4 texels at least, down to 1 once the atlas has had to shrink.
+      // Inside the border: 4 texels at least, down to 1 (a tile of kLeastTile) once the atlas
+      // has had to shrink.
       sizes[i] = 2 + std::clamp(int(std::lround(density * side[i])), attempt == 0 ? 4 : 1, 254);
       texels += double(sizes[i]) * sizes[i];
       largest = std::max(largest, sizes[i]);
@@ -111,7 +113,7 @@ Atlas layout(const QuadMesh& quads, const std::vector<Index>& faces, const Textu
     const int width = std::max(1, int(std::ceil(std::sqrt(texels) / largest))) * largest;
     Atlas atlas = pack(sizes, width);
     const int extent = std::max(atlas.width, atlas.height);
-    if (extent <= options.max_side || largest <= 3 || attempt == 30) return atlas;
+    if (extent <= options.max_side || largest <= TextureBakeOptions::kLeastTile || attempt == 30) return atlas;
     density *= 0.97 * options.max_side / extent;
   }
 }
@@ -209,7 +211,8 @@ std::string oversize_note(const QuadTexture& t, int max_side) {
   if (std::max(t.image.width, t.image.height) <= max_side) return {};
   return "the quads' texture is " + std::to_string(t.image.width) + " x " + std::to_string(t.image.height) +
          " texels, past the texture size of " + std::to_string(max_side) +
-         ": too many quads for it at 3 texels a side, the least a tile takes";
+         ": too many quads for it at " + std::to_string(TextureBakeOptions::kLeastTile) +
+         " texels a side, the least a tile takes";
 }
 
 }  // namespace qs

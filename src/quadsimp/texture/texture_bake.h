@@ -30,12 +30,15 @@ struct TextureBakeOptions {
   //! Texels along a tile's side, a one-texel border round it included; 0: the input's
   //! texel density (as many texels as its images spend on the surface), 6 to 256.
   int tile = 0;
-  //! The atlas's largest width and height: tiles shrink to fit (to 3 texels at least, so
-  //! that many quads can pass it). 4,096: 64 MB in memory, which graphics cards and
-  //! MeshLab's default texture memory take whole.
+  //! The atlas's largest width and height: tiles shrink to fit (to kLeastTile texels at
+  //! least, so that many quads can pass it). 4,096: 64 MB in memory, which graphics cards
+  //! and MeshLab's default texture memory take whole.
   int max_side = 4096;
   //! The range the CLI and the filters accept for max_side.
   static constexpr int kSmallestSide = 16, kLargestSide = 16384;
+  //! Texels along a tile's side at the least (one inside its border), however many quads
+  //! share max_side: oversize_note() says when that passes it.
+  static constexpr int kLeastTile = 3;
   //! Per face id, nonzero where the quad is drawn as two triangles split at corners 1-3
   //! (MeshLab's layers: split_diagonals()); none: every quad split at corners 0-2.
   std::vector<std::uint8_t> split = {};
@@ -54,7 +57,7 @@ QuadTexture bake_texture(const std::vector<Vec3>& positions, const FileTexture& 
                          const TextureBakeOptions& options = {});
 
 //! A note for the log where `t` came out wider or taller than `max_side` (too many quads
-//! for it at the least a tile takes, 3 texels a side); else "".
+//! for it at the least a tile takes, TextureBakeOptions::kLeastTile); else "".
 std::string oversize_note(const QuadTexture& t, int max_side);
 
 }  // namespace qs
