@@ -60,14 +60,20 @@ LayerQuads run_simplification(MeshFile layer, const std::string& name, const Sim
   const ReferenceSurface ref(std::move(in.reference));
   const SimplifyReport r = simplify_input(in, ref, params, progress);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const QuadQuality q = quad_quality(in.quads, &ref);
+  std::vector<Index> flawed;
+  const QuadQuality q = quad_quality(in.quads, &ref, &flawed);
   o.log.push_back(format("quad mesh simplification: %g -> %g quads in %.2f s (", r.initial_faces, r.faces, s) +
                   operations_done(r) +
                   format("); regular %.1f%%, max valence %g", q.regular_percent, q.max_valence));
   for (std::string& note : result_notes(r, q, r.target_faces)) o.log.push_back(std::move(note));
+  if (!flawed.empty())
+    o.log.push_back(format("the %g non-convex, flipped or folded quads are selected in the new layer",
+                           double(flawed.size())));
   o.values = {{"faces", q.faces}, {"vertices", q.vertices}, {"regular_percent", q.regular_percent},
               {"max_valence", q.max_valence}, {"seconds", s}};
-  return quads_of(in, images, texture_size, o);
+  LayerQuads out = quads_of(in, images, texture_size, o);
+  out.flawed = std::move(flawed);
+  return out;
 }
 
 LayerQuads run_conversion(MeshFile layer, const std::string& name, double crease_angle, Outcome& o,

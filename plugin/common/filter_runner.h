@@ -27,6 +27,9 @@ struct LayerQuads {
   QuadMesh mesh;
   std::vector<std::uint8_t> split;  //!< per face id: the diagonal it is drawn split at (split_diagonals())
   QuadTexture texture;              //!< the layer's texture baked onto them, or none
+  //! Face ids of the quads a simplification left non-convex, flipped or folded
+  //! (quad_quality()), which the filter selects in its result; none after a conversion.
+  std::vector<Index> flawed;
 };
 
 //! Prepares `layer` (cleaning, conversion) and simplifies it; a layer with a texture

@@ -87,6 +87,19 @@ void assign_quads(CMesh& m, const QuadMesh& q, const std::vector<std::uint8_t>& 
   }
 }
 
+//! Selects the two triangles of each quad in `faces` (face ids of `q`) in `m`, as
+//! assign_quads() made them from `q` (two per live face, in id order), and no other.
+template <class CMesh>
+void select_quads(CMesh& m, const QuadMesh& q, const std::vector<Index>& faces) {
+  std::vector<char> chosen(q.face_capacity(), 0);
+  for (Index f : faces) chosen[f] = 1;
+  std::size_t t = 0;
+  for (Index face = 0; face < q.face_capacity(); ++face) {
+    if (!q.is_face_live(face)) continue;
+    for (int k = 0; k < 2; ++k, ++t) chosen[face] ? m.face[t].SetS() : m.face[t].ClearS();
+  }
+}
+
 template <class CMesh>
 void assign_quads(CMesh& m, const QuadMesh& q) {
   assign_quads(m, q, split_diagonals(q));

@@ -592,5 +592,59 @@ else
   fail "the conversion with a crease angle"; cat "$work/server.log"
 fi
 
+# 12. Quads left folded over a CAD cylinder's rims (README, Limits) are selected in the
+#     result: saved with face flags, both triangles of each carry vcglib's selection bit
+#     (0x20), as many as the log's count says, and no other.
+python3 - "$work/cylinder.ply" <<'PY'
+import math, sys
+around, height = 64, 2.0
+ring = [(math.cos(2 * math.pi * k / around), math.sin(2 * math.pi * k / around)) for k in range(around)]
+points = [(x, y, z) for z in (0.0, height) for x, y in ring] + [(0.0, 0.0, 0.0), (0.0, 0.0, height)]
+bottom, top = 2 * around, 2 * around + 1
+faces = []
+for k in range(around):
+    k1 = (k + 1) % around
+    faces += [(k, k1, k1 + around), (k, k1 + around, k + around), (bottom, k1, k), (top, k + around, k1 + around)]
+with open(sys.argv[1], "w") as out:
+    out.write(f"ply\nformat ascii 1.0\nelement vertex {len(points)}\nproperty float x\nproperty float y\n"
+              f"property float z\nelement face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
+    out.writelines(f"{x!r} {y!r} {z!r}\n" for x, y, z in points)
+    out.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
+PY
+sed 's/name="TargetFaceNum" type="RichInt" value="[0-9]*"/name="TargetFaceNum" type="RichInt" value="100"/' \
+  "$script" >"$work/cylinder.mlx"
+flawed=
+if server -i "$work/cylinder.ply" -o "$work/cylinder_out.ply" -m ff -s "$work/cylinder.mlx"; then
+  flawed=$(sed -n 's/.*the \([0-9]*\) non-convex, flipped or folded quads are selected in the new layer.*/\1/p' \
+             "$work/server.log" | head -1)
+fi
+if [ -n "$flawed" ] && [ "$flawed" -gt 0 ] && python3 - "$work/cylinder_out.ply" "$flawed" <<'PY'
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+end = data.index(b"end_header\n") + len(b"end_header\n")
+header = data[:end].decode("ascii").split("\n")
+expected = ["format binary_little_endian 1.0", "property float x", "property float y", "property float z",
+            "property list uchar int vertex_indices", "property int flags"]
+assert all(line in header for line in expected), header
+vertices = int(next(l for l in header if l.startswith("element vertex")).split()[2])
+faces = int(next(l for l in header if l.startswith("element face")).split()[2])
+assert len([l for l in header if l.startswith("property")]) == 5, header  # nothing else to skip
+pos, selected = end + 12 * vertices, []
+for t in range(faces):
+    pos += 1 + 4 * data[pos]
+    (flags,) = struct.unpack_from("<i", data, pos)
+    pos += 4
+    if flags & 0x20:
+        selected.append(t)
+# assign_quads() writes each quad's two triangles in turn.
+assert len(selected) == 2 * int(sys.argv[2]) and all(t ^ 1 in selected for t in selected), selected
+print(f"ok: the {sys.argv[2]} folded quads of the cylinder are selected ({len(selected)} triangles)")
+PY
+then
+  :
+else
+  fail "the flawed quads are not selected as the log says (${flawed:-no count})"; cat "$work/server.log"
+fi
+
 if [ "$failures" -gt 0 ]; then echo "$failures failed"; exit 1; fi
 echo "meshlabserver tests passed"

@@ -178,7 +178,8 @@ def cad_cylinder(around=64, height=2.0):
 
 
 def test_a_result_with_folded_quads_is_logged(capfd):
-    # Quads folded over a CAD cylinder's rims (README, Limits): the log says how many.
+    # Quads folded over a CAD cylinder's rims (README, Limits): the log says how many, and
+    # the result has them selected (both triangles of each), so that a user can find them.
     ms = pymeshlab.MeshSet(verbose=True)
     ms.add_mesh(cad_cylinder(), "cylinder")
     ms.meshing_quad_mesh_simplification(targetfacenum=100)
@@ -187,9 +188,14 @@ def test_a_result_with_folded_quads_is_logged(capfd):
     assert "of the result's 100 quads, " in err
     assert " folded (bent by more than 90 degrees)" in err
     assert "cylinder: 100% of the surface is long, thin triangles" in err  # said on loading, with the remedy
+    flawed = re.search(r"the (\d+) non-convex, flipped or folded quads are selected in the new layer", err)
+    assert flawed and int(flawed.group(1)) > 0, err
+    assert ms.current_mesh().selected_face_number() == 2 * int(flawed.group(1))
     ms.add_mesh(open_grid(12), "grid")
     ms.meshing_quad_mesh_simplification(targetfacenum=60)
-    assert "of the result's" not in capfd.readouterr().err
+    err = capfd.readouterr().err
+    assert "of the result's" not in err and " are selected " not in err
+    assert ms.current_mesh().selected_face_number() == 0
 
 
 def test_a_strip_one_quad_wide_reaches_its_target_by_chord_collapses(capfd):

@@ -619,6 +619,41 @@ TEST(PluginRunner, simplification_logs_what_it_did_and_matches_the_pipeline) {
   EXPECT_NO_THROW(validate(converted));
 }
 
+// A CAD cylinder's long triangles leave quads folded over its rims (README, Limits): the
+// filter says how many and selects them in its result, both triangles of each and no
+// other, so that a user finds them. A sphere's quads are sound: nothing is selected.
+TEST(PluginRunner, flawed_quads_are_selected_in_the_result) {
+  const TriMesh cylinder = cad_cylinder(64, 1, 2.0);
+  SimplifyParams params;
+  params.target_faces = 100;
+  Outcome o;
+  const LayerQuads r = run_simplification({cylinder.positions, cylinder.faces, {}}, "cylinder", params, {}, o);
+  ASSERT_FALSE(r.flawed.empty());
+  EXPECT_TRUE(std::is_sorted(r.flawed.begin(), r.flawed.end()));
+  const std::string line =
+      "the " + std::to_string(r.flawed.size()) + " non-convex, flipped or folded quads are selected in the new layer";
+  EXPECT_NE(std::find(o.log.begin(), o.log.end(), line), o.log.end()) << ::testing::PrintToString(o.log);
+  Layer<float> layer;
+  assign_quads(layer, r.mesh, r.split);
+  select_quads(layer, r.mesh, r.flawed);
+  std::size_t t = 0, selected = 0;
+  for (Index f = 0; f < r.mesh.face_capacity(); ++f) {
+    if (!r.mesh.is_face_live(f)) continue;
+    const bool flawed = std::binary_search(r.flawed.begin(), r.flawed.end(), f);
+    for (int k = 0; k < 2; ++k, ++t) {
+      EXPECT_EQ(layer.face[t].IsS(), flawed) << "quad " << f;
+      selected += layer.face[t].IsS();
+    }
+  }
+  EXPECT_EQ(selected, 2 * r.flawed.size());
+
+  const TriMesh ball = tri_sphere(20, 30);
+  params.target_faces = 120;
+  Outcome sound;
+  EXPECT_TRUE(run_simplification({ball.positions, ball.faces, {}}, "ball", params, {}, sound).flawed.empty());
+  for (const std::string& l : sound.log) EXPECT_EQ(l.find("selected"), std::string::npos) << l;
+}
+
 // A sphere textured by longitude and height: the texture baked onto its quads is as wide
 // as the input's texel density asks by default, and within the texture size given (both
 // the simplification's and the conversion's).

@@ -1482,6 +1482,36 @@ TEST(Metrics, a_quad_flat_on_a_coarse_triangle_follows_it_whatever_the_vertex_no
   EXPECT_EQ(quad_quality(QuadMesh::from_faces(corners, {{3, 2, 1, 0}}), &ref).flipped_faces, 1u);
 }
 
+// The filters select the quads the quality counts as flawed, so quad_quality() lists them:
+// over a plane, one sound quad, then one folded, one turned over (flipped) and one with a
+// reflex corner, each listed once, by id.
+TEST(Metrics, flawed_quads_are_listed_by_id) {
+  const ReferenceSurface plane(tri_grid(4, 4));
+  std::vector<Vec3> positions;
+  std::vector<std::array<Index, 4>> faces;
+  auto add = [&](double x0, std::array<Vec3, 4> corners, bool turned) {
+    const Index first = Index(positions.size());
+    for (const Vec3& c : corners) positions.push_back(Vec3(x0, 0.4, 0.01) + 0.2 * c);
+    faces.push_back(turned ? std::array<Index, 4>{first + 3, first + 2, first + 1, first}
+                           : std::array<Index, 4>{first, first + 1, first + 2, first + 3});
+  };
+  const Vec3 p0(0, 0, 0), p1(1, 0, 0), p2(1, 1, 0);
+  add(0.0, {p0, p1, p2, Vec3(0, 1, 0)}, false);    // sound
+  add(0.25, {p0, p1, p2, Vec3(0, -1, 1)}, false);  // folded
+  add(0.5, {p0, p1, p2, Vec3(0, 1, 0)}, true);     // flipped
+  add(0.75, {p0, p1, p2, Vec3(0.8, 0.2, 0)}, false);  // non-convex
+  const QuadMesh m = QuadMesh::from_faces(positions, faces);
+  std::vector<Index> flawed;
+  const QuadQuality q = quad_quality(m, &plane, &flawed);
+  EXPECT_EQ(q.folded_faces, 1u);
+  EXPECT_EQ(q.flipped_faces, 1u);
+  EXPECT_EQ(q.nonconvex_faces, 1u);
+  EXPECT_EQ(flawed, (std::vector<Index>{1, 2, 3}));
+  flawed.clear();
+  quad_quality(quad_grid(6, 5), nullptr, &flawed);
+  EXPECT_TRUE(flawed.empty());
+}
+
 // A tetrahedron floating beside a scan (debris) converts to two quads on its four corners,
 // back to back: folded, and the least a closed quad mesh has. The quality counts such
 // pieces and the log's note names them, so that a user knows where the folds are.

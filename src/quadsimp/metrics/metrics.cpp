@@ -81,7 +81,7 @@ TriMesh triangulate(const QuadMesh& m) {
   return t;
 }
 
-QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
+QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref, std::vector<Index>* flawed) {
   QuadQuality q;
   q.faces = m.n_faces();
   q.vertices = m.n_vertices();
@@ -124,8 +124,10 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
       q.homeometry_min = std::min(q.homeometry_min, d);
       q.homeometry_max = std::max(q.homeometry_max, d);
     }
-    q.nonconvex_faces += !quad_is_convex(p[0], p[1], p[2], p[3]);
-    q.folded_faces += quad_folds(p[0], p[1], p[2], p[3]);
+    const bool nonconvex = !quad_is_convex(p[0], p[1], p[2], p[3]), folded = quad_folds(p[0], p[1], p[2], p[3]);
+    bool flipped = false;
+    q.nonconvex_faces += nonconvex;
+    q.folded_faces += folded;
     const Index partner = two_quad_piece_partner(m, f);
     q.two_quad_pieces += partner != kNone && partner > f;  // counted at the lower of the two
     if (ref) {
@@ -153,9 +155,11 @@ QuadQuality quad_quality(const QuadMesh& m, const ReferenceSurface* ref) {
       if (against(ref->closest_to_quad_centre(p.data()))) {
         int corners = 0;
         for (const Vec3& x : p) corners += against(ref->closest(x));
-        q.flipped_faces += corners >= 2;
+        flipped = corners >= 2;
+        q.flipped_faces += flipped;
       }
     }
+    if (flawed && (nonconvex || folded || flipped)) flawed->push_back(f);
   }
   q.homeometry_min = std::min(q.homeometry_min, q.edge_ratio_min);
   q.homeometry_max = std::max(q.homeometry_max, q.edge_ratio_max);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "quadsimp/mesh/quad_mesh.h"
 #include "quadsimp/reference/reference_surface.h"
@@ -29,7 +30,11 @@ struct QuadQuality {
   Index border_loops = 0;        //!< closed runs of border edges: holes, and a patch's outline
 };
 
-QuadQuality quad_quality(const QuadMesh& mesh, const ReferenceSurface* ref = nullptr);
+//! With `flawed`, the ids of the faces counted non-convex, flipped or folded are
+//! appended to it, each once and in id order: what the MeshLab filters select in their
+//! result so that a user can find them.
+QuadQuality quad_quality(const QuadMesh& mesh, const ReferenceSurface* ref = nullptr,
+                         std::vector<Index>* flawed = nullptr);
 
 //! How far along the output's normal the projectability measure looks for the reference
 //! (SurfaceDistance::projectability), as a share of the reference's bounding-box diagonal.
