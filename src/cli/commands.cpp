@@ -220,7 +220,8 @@ int run_simplify(const SimplifyArgs& a) {
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
     write_result(a.output, in, a.texture_size, log);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const QuadQuality q = quad_quality(in.quads, &ref);
+    std::vector<Index> flawed;  // ids of the compacted quads: the written file's faces
+    const QuadQuality q = quad_quality(in.quads, &ref, &flawed);
     if (log)
       for (const std::string& note : result_notes(r, q, r.target_faces)) log(note);
     if (a.json || a.stats) {
@@ -233,7 +234,7 @@ int run_simplify(const SimplifyArgs& a) {
       if (!in.input_surface.faces.empty()) input_ref.emplace(std::move(in.input_surface));
       const SurfaceDistance d = surface_distance(in.quads, input_ref ? *input_ref : ref, a.samples);
       if (a.json) {
-        std::string j = to_json(q, &d);
+        std::string j = to_json(q, &d, &flawed);
         const auto n = [](Index x) { return std::to_string(x); };
         char share[32], seconds[32];
         std::snprintf(share, sizeof share, "%.4f", r.blocked_share);
@@ -351,10 +352,11 @@ int run_stats(const StatsArgs& a) {
     }
     TriMesh tri = cleaned_surface(read_mesh(a.reference), a.reference);
     const ReferenceSurface ref(std::move(tri));
-    const QuadQuality q = quad_quality(quads, &ref);
+    std::vector<Index> flawed;
+    const QuadQuality q = quad_quality(quads, &ref, &flawed);
     const SurfaceDistance d = surface_distance(quads, ref, a.samples);
     if (a.json)
-      std::printf("%s\n", to_json(q, &d).c_str());
+      std::printf("%s\n", to_json(q, &d, &flawed).c_str());
     else
       print_quality(q, &d);
     return kOk;

@@ -17,6 +17,7 @@
 #include "fixtures/shapes.h"
 #include "quadsimp/io/images.h"
 #include "quadsimp/io/mesh_io.h"
+#include "quadsimp/mesh/quad_geometry.h"
 
 using namespace qs;
 namespace fs = std::filesystem;
@@ -764,6 +765,34 @@ TEST_F(Cli, a_result_with_folded_quads_says_so) {
   EXPECT_EQ(r.out.find("of the result's"), std::string::npos) << r.out;
   r = run("simplify " + input_ + " " + p("s.ply") + " --faces 60");
   EXPECT_EQ(r.out.find("of the result's"), std::string::npos) << r.out;
+
+  // --json and `stats --json` list them, as indices of the file's quads: every folded quad
+  // of the file, and the same list from either.
+  auto flawed_of = [](const std::string& json) {
+    std::vector<std::size_t> ids;
+    const std::size_t at = json.find("\"flawed_faces\": [");
+    if (at == std::string::npos) return std::pair{false, ids};
+    std::istringstream in(json.substr(at + 17, json.find(']', at) - at - 17));
+    for (std::string id; std::getline(in, id, ',');) ids.push_back(std::stoul(id));
+    return std::pair{true, ids};
+  };
+  r = run("simplify " + cylinder + " " + p("c.ply") + " --faces 100 --json --samples 1000 -q");
+  const auto [listed, flawed] = flawed_of(r.out);
+  ASSERT_TRUE(listed) << r.out;
+  const MeshFile quads = read_mesh(p("c.ply"));
+  std::size_t folded = 0;
+  for (std::size_t i = 0; i < quads.quads.size(); ++i) {
+    const auto& c = quads.quads[i];
+    const auto& x = quads.positions;
+    if (!quad_folds(x[c[0]], x[c[1]], x[c[2]], x[c[3]])) continue;
+    ++folded;
+    EXPECT_TRUE(std::count(flawed.begin(), flawed.end(), i)) << "folded quad " << i << " not listed";
+  }
+  EXPECT_GT(folded, 0u);
+  r = run("stats " + cylinder + " " + p("c.ply") + " --json --samples 1000");
+  EXPECT_EQ(flawed_of(r.out).second, flawed) << r.out;
+  r = run("stats " + input_ + " " + p("s.ply") + " --json --samples 1000");
+  EXPECT_NE(r.out.find("\"flawed_faces\": []"), std::string::npos) << r.out;
 }
 
 TEST_F(Cli, a_strip_one_quad_wide_reaches_its_target_by_chord_collapses) {

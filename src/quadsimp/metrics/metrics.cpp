@@ -201,7 +201,7 @@ SurfaceDistance surface_distance(const QuadMesh& m, const ReferenceSurface& ref,
   return r;
 }
 
-std::string to_json(const QuadQuality& q, const SurfaceDistance* d) {
+std::string to_json(const QuadQuality& q, const SurfaceDistance* d, const std::vector<Index>* flawed) {
   char buf[2048];
   int n =
       std::snprintf(buf, sizeof buf,
@@ -222,6 +222,11 @@ std::string to_json(const QuadQuality& q, const SurfaceDistance* d) {
                       1e3 * d->hausdorff, 1e3 * d->rms, 1e3 * d->mean_to_ref, 1e3 * d->max_to_ref,
                       1e3 * d->max_from_ref, 1e3 * d->rms_to_ref, 1e3 * d->rms_from_ref, d->projectability, d->samples);
     s.append(buf, std::size_t(n));
+  }
+  if (flawed) {
+    s += ", \"flawed_faces\": [";
+    for (std::size_t i = 0; i < flawed->size(); ++i) s += (i ? ", " : "") + std::to_string((*flawed)[i]);
+    s += "]";
   }
   return s + "}";
 }

@@ -56,8 +56,10 @@ struct SurfaceDistance {
 //! through Embree, in parallel; deterministic for a given sample count.
 SurfaceDistance surface_distance(const QuadMesh& mesh, const ReferenceSurface& ref, Index samples_per_side = 1000000);
 
-//! The two as one JSON object (values in the units above; distances x 1e-3 of the diagonal too).
-std::string to_json(const QuadQuality& q, const SurfaceDistance* d);
+//! The two as one JSON object (values in the units above; distances x 1e-3 of the diagonal
+//! too), with `flawed` as "flawed_faces" if given: quad_quality()'s list, of a compacted
+//! mesh, so the quads' indices in the order files list them.
+std::string to_json(const QuadQuality& q, const SurfaceDistance* d, const std::vector<Index>* flawed = nullptr);
 
 //! Triangles of a quad mesh, each quad split along its shorter diagonal.
 TriMesh triangulate(const QuadMesh& mesh);
