@@ -66,8 +66,10 @@ LayerQuads run_simplification(MeshFile layer, const std::string& name, const Sim
                   operations_done(r) +
                   format("); regular %.1f%%, max valence %g", q.regular_percent, q.max_valence));
   for (std::string& note : result_notes(r, q, r.target_faces)) o.log.push_back(std::move(note));
+  flawed = noted_faces(flawed, r);
   if (!flawed.empty())
-    o.log.push_back(format("the %g non-convex, flipped or folded quads are selected in the new layer",
+    o.log.push_back(format("the %g quads counted above (non-convex, flipped, folded or beyond the reach) are "
+                           "selected in the new layer",
                            double(flawed.size())));
   o.values = {{"faces", q.faces}, {"vertices", q.vertices}, {"regular_percent", q.regular_percent},
               {"max_valence", q.max_valence}, {"seconds", s}};

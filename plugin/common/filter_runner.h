@@ -27,8 +27,9 @@ struct LayerQuads {
   QuadMesh mesh;
   std::vector<std::uint8_t> split;  //!< per face id: the diagonal it is drawn split at (split_diagonals())
   QuadTexture texture;              //!< the layer's texture baked onto them, or none
-  //! Face ids of the quads a simplification left non-convex, flipped or folded
-  //! (quad_quality()), which the filter selects in its result; none after a conversion.
+  //! Face ids of the quads a simplification left non-convex, flipped, folded or beyond
+  //! the reach (noted_faces()), which the filter selects in its result; none after a
+  //! conversion.
   std::vector<Index> flawed;
 };
 

@@ -42,9 +42,9 @@ const std::vector<FilterSpec>& filter_specs() {
        "closest point on it (as <i>Vertex Attribute Transfer</i> does), its face colours, each quad the colour of "
        "the face closest to its centre, and its texture, baked into a texture of the quads' own (a tile for each "
        "quad; MeshLab 2020.09 writes it beside the input's file, as its own texture filters do); other attributes "
-       "are not carried over. Quads the log counts as non-convex, flipped or folded are selected in the result, "
-       "so that they can be found. Quads are stored the MeshLab way, as triangle pairs with a faux shared edge: "
-       "save as PLY with per-face flags, or as OBJ/OFF with polygons, to keep them." +
+       "are not carried over. Quads the log counts as non-convex, flipped, folded or beyond the reach are "
+       "selected in the result, so that they can be found. Quads are stored the MeshLab way, as triangle pairs "
+       "with a faux shared edge: save as PLY with per-face flags, or as OBJ/OFF with polygons, to keep them." +
            kCitation},
       {kConvert, "Convert to Pure Quad Mesh", "meshing_tri_to_pure_quad",
        "Turns a triangle mesh into a <b>pure quad mesh</b> without moving any vertex: triangles are paired "

@@ -222,6 +222,7 @@ int run_simplify(const SimplifyArgs& a) {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::vector<Index> flawed;  // ids of the compacted quads: the written file's faces
     const QuadQuality q = quad_quality(in.quads, &ref, &flawed);
+    flawed = noted_faces(flawed, r);
     if (log)
       for (const std::string& note : result_notes(r, q, r.target_faces)) log(note);
     if (a.json || a.stats) {

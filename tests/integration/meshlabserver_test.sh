@@ -615,7 +615,7 @@ sed 's/name="TargetFaceNum" type="RichInt" value="[0-9]*"/name="TargetFaceNum" t
   "$script" >"$work/cylinder.mlx"
 flawed=
 if server -i "$work/cylinder.ply" -o "$work/cylinder_out.ply" -m ff -s "$work/cylinder.mlx"; then
-  flawed=$(sed -n 's/.*the \([0-9]*\) non-convex, flipped or folded quads are selected in the new layer.*/\1/p' \
+  flawed=$(sed -n 's/.*the \([0-9]*\) quads counted above (.*) are selected in the new layer.*/\1/p' \
              "$work/server.log" | head -1)
 fi
 if [ -n "$flawed" ] && [ "$flawed" -gt 0 ] && python3 - "$work/cylinder_out.ply" "$flawed" <<'PY'

@@ -188,7 +188,7 @@ def test_a_result_with_folded_quads_is_logged(capfd):
     assert "of the result's 100 quads, " in err
     assert " folded (bent by more than 90 degrees)" in err
     assert "cylinder: 100% of the surface is long, thin triangles" in err  # said on loading, with the remedy
-    flawed = re.search(r"the (\d+) non-convex, flipped or folded quads are selected in the new layer", err)
+    flawed = re.search(r"the (\d+) quads counted above \([a-z ,-]*\) are selected in the new layer", err)
     assert flawed and int(flawed.group(1)) > 0, err
     assert ms.current_mesh().selected_face_number() == 2 * int(flawed.group(1))
     ms.add_mesh(open_grid(12), "grid")

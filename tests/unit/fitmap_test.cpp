@@ -954,6 +954,15 @@ TEST(Adaptive, automatic_halting_keeps_the_moai_projectable) {
   EXPECT_GT(paper.beyond_reach, 0u);
   EXPECT_GT(paper.beyond_reach, r.beyond_reach);
   EXPECT_NE(defects_note(QuadQuality{}, paper.beyond_reach).find(" beyond the reach "), std::string::npos);
+  // Listed by their ids in the result (the filters select them with the flawed quads).
+  const auto& ids = paper.beyond_reach_faces;
+  EXPECT_EQ(ids.size(), paper.beyond_reach);
+  EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()) && std::adjacent_find(ids.begin(), ids.end()) == ids.end());
+  EXPECT_TRUE(ids.empty() || ids.back() < paper.faces);
+  const std::vector<Index> flawed = {ids.front(), paper.faces};  // one shared, one not
+  const std::vector<Index> noted = noted_faces(flawed, paper);
+  EXPECT_EQ(noted.size(), ids.size() + 1);
+  EXPECT_TRUE(std::is_sorted(noted.begin(), noted.end()));
 }
 
 TEST(Adaptive, reach_checks_faces_beside_holes_but_not_from_their_border_edges) {

@@ -630,8 +630,9 @@ TEST(PluginRunner, flawed_quads_are_selected_in_the_result) {
   const LayerQuads r = run_simplification({cylinder.positions, cylinder.faces, {}}, "cylinder", params, {}, o);
   ASSERT_FALSE(r.flawed.empty());
   EXPECT_TRUE(std::is_sorted(r.flawed.begin(), r.flawed.end()));
-  const std::string line =
-      "the " + std::to_string(r.flawed.size()) + " non-convex, flipped or folded quads are selected in the new layer";
+  const std::string line = "the " + std::to_string(r.flawed.size()) +
+                           " quads counted above (non-convex, flipped, folded or beyond the reach) are selected in "
+                           "the new layer";
   EXPECT_NE(std::find(o.log.begin(), o.log.end(), line), o.log.end()) << ::testing::PrintToString(o.log);
   Layer<float> layer;
   assign_quads(layer, r.mesh, r.split);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -164,6 +165,13 @@ std::string defects_note(const QuadQuality& q, Index beyond_reach) {
              "isolated pieces first";
   return "of the result's " + std::to_string(q.faces) + " quads, " + parts + pieces +
          "; see Limits in quadsimp's README";
+}
+
+std::vector<Index> noted_faces(const std::vector<Index>& flawed, const SimplifyReport& r) {
+  std::vector<Index> out;
+  std::set_union(flawed.begin(), flawed.end(), r.beyond_reach_faces.begin(), r.beyond_reach_faces.end(),
+                 std::back_inserter(out));
+  return out;
 }
 
 std::string operations_done(const SimplifyReport& r) {

@@ -102,6 +102,11 @@ std::string creases_note(const SimplifyReport& report, const QuadQuality& qualit
 //! filters both log these.
 std::vector<std::string> result_notes(const SimplifyReport& report, const QuadQuality& quality, Index target_faces);
 
+//! The faces defects_note() counts, by id, each once and in order: `flawed` (as
+//! quad_quality() lists them) with the report's faces beyond the reach. The filters select
+//! them in their result; the CLI's JSON lists them.
+std::vector<Index> noted_faces(const std::vector<Index>& flawed, const SimplifyReport& report);
+
 //! The operations a run did, for a summary line: "N collapses, M rotations", with the
 //! chord and crease collapses between them when there were any.
 std::string operations_done(const SimplifyReport& report);

@@ -130,7 +130,7 @@ class Simplifier {
   // Smaller than the reach (none without one): within the reach of its corners, which lie
   // on M0, so beyond_reach() need not cast rays; the M-fitmap's slack applies there only.
   bool under_reach(const QuadShape& s) const { return 2 * s.radius < reach_; }
-  Index count_beyond_reach() const;
+  std::vector<Index> faces_beyond_reach() const;
   void count_refusal(Verdict v);  // the report's count for a verdict other than Ok
   void cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot);
   void hold_tips();

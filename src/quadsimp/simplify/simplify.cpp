@@ -310,15 +310,15 @@ void Simplifier::count_refusal(Verdict v) {
 // after it are not checked (checking them cost 10-23% more time, bench/RESULTS.md; kept
 // through the smoothing, it mended a CAD block far below its halting count but left a
 // cube less projectable: "The reach kept through the smoothing"), so the faces beyond
-// the reach at the end are counted for the log.
-Index Simplifier::count_beyond_reach() const {
-  Index n = 0;
+// the reach at the end are listed for the log (and the filters' selection).
+std::vector<Index> Simplifier::faces_beyond_reach() const {
+  std::vector<Index> out;
   for (Index f = 0; f < m_.face_capacity(); ++f) {
     if (!m_.is_face_live(f)) continue;
     const auto q = m_.positions_of(m_.face_vertices(f));
-    n += beyond_reach(f, q.data(), shape_of(q.data()));
+    if (beyond_reach(f, q.data(), shape_of(q.data()))) out.push_back(f);
   }
-  return n;
+  return out;
 }
 
 void Simplifier::update_mu() {
@@ -798,14 +798,17 @@ void Simplifier::finish(bool halted) {
   // no longer slides along it. When the inset came first, bunny.ply with 0.1% of its
   // triangles taken out, stopping at 295 quads, ended with one 8.4 input edges off it.
   if (has_border_ && opt_.inset_border && !opt_.preserve_boundary && !rep_.cancelled) inset_border();
-  if (opt_.adaptive) rep_.beyond_reach = count_beyond_reach();
+  if (opt_.adaptive) rep_.beyond_reach_faces = faces_beyond_reach();
   if (opt_.check_invariants) check_invariants(rep_.border_insets == 0);  // the inset moves them off on purpose
   for (Index v = 0; v < m_.vertex_capacity(); ++v) {
     if (!m_.is_vertex_live(v)) continue;
     rep_.tips += (held_[v] & kHeldTip) != 0;
     rep_.crease_vertices += !on_crease_.empty() && on_crease_[v];
   }
-  m_.compact();
+  std::vector<Index> face_map;
+  m_.compact(nullptr, &face_map);
+  for (Index& f : rep_.beyond_reach_faces) f = face_map[f];  // compact() keeps the faces' order
+  rep_.beyond_reach = Index(rep_.beyond_reach_faces.size());
   rep_.faces = m_.n_faces();
 }
 

@@ -215,6 +215,9 @@ struct SimplifyReport {
   //! Adaptive mode with a reach: faces of the result that fail its check (it is made where
   //! collapses grow faces; rotations and smoothing after them can take a face out of reach).
   Index beyond_reach = 0;
+  //! Their ids in the result, in order (what the MeshLab filters select with the flawed
+  //! quads, quad_quality()'s).
+  std::vector<Index> beyond_reach_faces;
   //! Adaptive mode: share of the surface the M-fitmap (or the reach) blocked when the run ended.
   double blocked_share = 0;
   //! Automatic halting by share: the run ended because every remaining collapse was
