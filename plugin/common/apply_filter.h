@@ -121,8 +121,7 @@ Outcome apply_filter(int id, Document& md, const ParameterList& params, CallBack
       MeshFile file = layer_file(m, textures, images);
       const LayerQuads q = run_simplification(std::move(file), name, p, progress_of(cb), out, images, texture_size);
       auto* result = md.addNewMesh("", QString::fromStdString(name + " quads"), true);
-      assign_quads(result->cm, q.mesh, q.split);
-      select_quads(result->cm, q.mesh, q.flawed);
+      assign_quads(result->cm, q.mesh, q.split, q.flawed);
       store_texture(q, m, result, textures, name, out);
       if (coloured) {
         result->updateDataMask(colour_mask);

@@ -55,11 +55,13 @@ MeshFile mesh_file_of(const CMesh& m) {
 }
 
 //! Replaces the content of `m` with the quads of `q`, each as two triangles split
-//! along the diagonal `split` (split_diagonals()) picks, which is marked faux. At a doublet
-//! (two quads sharing two edges) both quads' shorter diagonals join the same two corners,
-//! which made the same triangle twice, and MeshLab's polygon view then saw an 8-gon.
+//! along the diagonal `split` (split_diagonals()) picks, which is marked faux; the two
+//! triangles of each quad in `selected` (face ids of `q`) are selected, no other. At a
+//! doublet (two quads sharing two edges) both quads' shorter diagonals join the same two
+//! corners, which made the same triangle twice, and MeshLab's polygon view then saw an 8-gon.
 template <class CMesh>
-void assign_quads(CMesh& m, const QuadMesh& q, const std::vector<std::uint8_t>& split) {
+void assign_quads(CMesh& m, const QuadMesh& q, const std::vector<std::uint8_t>& split,
+                  const std::vector<Index>& selected = {}) {
   using Alloc = typename vcg::tri::Allocator<CMesh>;
   m.Clear();
   const std::vector<Index> id = q.live_vertex_ids();
@@ -71,6 +73,8 @@ void assign_quads(CMesh& m, const QuadMesh& q, const std::vector<std::uint8_t>& 
     }
   (void)vi;
   Alloc::AddFaces(m, 2 * std::size_t(q.n_faces()));
+  std::vector<char> chosen(q.face_capacity(), 0);
+  for (Index face : selected) chosen[face] = 1;
   std::size_t f = 0;
   for (Index face = 0; face < q.face_capacity(); ++face) {
     if (!q.is_face_live(face)) continue;
@@ -84,19 +88,7 @@ void assign_quads(CMesh& m, const QuadMesh& q, const std::vector<std::uint8_t>& 
     t2.ClearAllF();
     t1.SetF(2);  // c2 -> c0
     t2.SetF(0);  // c0 -> c2
-  }
-}
-
-//! Selects the two triangles of each quad in `faces` (face ids of `q`) in `m`, as
-//! assign_quads() made them from `q` (two per live face, in id order), and no other.
-template <class CMesh>
-void select_quads(CMesh& m, const QuadMesh& q, const std::vector<Index>& faces) {
-  std::vector<char> chosen(q.face_capacity(), 0);
-  for (Index f : faces) chosen[f] = 1;
-  std::size_t t = 0;
-  for (Index face = 0; face < q.face_capacity(); ++face) {
-    if (!q.is_face_live(face)) continue;
-    for (int k = 0; k < 2; ++k, ++t) chosen[face] ? m.face[t].SetS() : m.face[t].ClearS();
+    if (chosen[face]) t1.SetS(), t2.SetS();
   }
 }
 

@@ -635,8 +635,7 @@ TEST(PluginRunner, flawed_quads_are_selected_in_the_result) {
                            "the new layer";
   EXPECT_NE(std::find(o.log.begin(), o.log.end(), line), o.log.end()) << ::testing::PrintToString(o.log);
   Layer<float> layer;
-  assign_quads(layer, r.mesh, r.split);
-  select_quads(layer, r.mesh, r.flawed);
+  assign_quads(layer, r.mesh, r.split, r.flawed);
   std::size_t t = 0, selected = 0;
   for (Index f = 0; f < r.mesh.face_capacity(); ++f) {
     if (!r.mesh.is_face_live(f)) continue;
