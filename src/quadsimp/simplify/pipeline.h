@@ -76,7 +76,7 @@ std::string target_shortfall(const SimplifyReport& report, Index target_faces);
 //! are not. Uniform runs unfold what they can at the end and adaptive runs refuse folds,
 //! but knife-edged parts and CAD solids of long triangles can leave some (README, Limits),
 //! and a user running a batch should hear of them without asking for statistics. So
-//! should one whose adaptive result has faces beyond the reach (SimplifyReport::beyond_reach).
+//! should one whose adaptive result has faces beyond the reach (SimplifyReport::beyond_reach_faces).
 std::string defects_note(const QuadQuality& quality, Index beyond_reach = 0);
 
 //! "" unless the result's holes crowd it: two or more border loops, a fifth or more of its

@@ -808,7 +808,6 @@ void Simplifier::finish(bool halted) {
   std::vector<Index> face_map;
   m_.compact(nullptr, &face_map);
   for (Index& f : rep_.beyond_reach_faces) f = face_map[f];  // compact() keeps the faces' order
-  rep_.beyond_reach = Index(rep_.beyond_reach_faces.size());
   rep_.faces = m_.n_faces();
 }
 

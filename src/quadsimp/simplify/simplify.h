@@ -212,11 +212,10 @@ struct SimplifyReport {
   //! by the valence cap, by geometry (a fold or a convex face turned non-convex), by
   //! the M-fitmap, by the reach (adaptive mode).
   Index refused_topology = 0, refused_valence = 0, refused_geometry = 0, refused_fitmap = 0, refused_reach = 0;
-  //! Adaptive mode with a reach: faces of the result that fail its check (it is made where
-  //! collapses grow faces; rotations and smoothing after them can take a face out of reach).
-  Index beyond_reach = 0;
-  //! Their ids in the result, in order (what the MeshLab filters select with the flawed
-  //! quads, quad_quality()'s).
+  //! Adaptive mode with a reach: the ids, in order, of the result's faces that fail its
+  //! check (it is made where collapses grow faces; rotations and smoothing after them can
+  //! take a face out of reach). The log counts them; the MeshLab filters select them with
+  //! the flawed quads (quad_quality()'s).
   std::vector<Index> beyond_reach_faces;
   //! Adaptive mode: share of the surface the M-fitmap (or the reach) blocked when the run ended.
   double blocked_share = 0;
