@@ -595,22 +595,7 @@ fi
 # 12. Quads left folded over a CAD cylinder's rims (README, Limits) are selected in the
 #     result: saved with face flags, both triangles of each carry vcglib's selection bit
 #     (0x20), as many as the log's count says, and no other.
-python3 - "$work/cylinder.ply" <<'PY'
-import math, sys
-around, height = 64, 2.0
-ring = [(math.cos(2 * math.pi * k / around), math.sin(2 * math.pi * k / around)) for k in range(around)]
-points = [(x, y, z) for z in (0.0, height) for x, y in ring] + [(0.0, 0.0, 0.0), (0.0, 0.0, height)]
-bottom, top = 2 * around, 2 * around + 1
-faces = []
-for k in range(around):
-    k1 = (k + 1) % around
-    faces += [(k, k1, k1 + around), (k, k1 + around, k + around), (bottom, k1, k), (top, k + around, k1 + around)]
-with open(sys.argv[1], "w") as out:
-    out.write(f"ply\nformat ascii 1.0\nelement vertex {len(points)}\nproperty float x\nproperty float y\n"
-              f"property float z\nelement face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
-    out.writelines(f"{x!r} {y!r} {z!r}\n" for x, y, z in points)
-    out.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
-PY
+python3 "$here/cad_cylinder_ply.py" "$work/cylinder.ply" 64
 sed 's/name="TargetFaceNum" type="RichInt" value="[0-9]*"/name="TargetFaceNum" type="RichInt" value="100"/' \
   "$script" >"$work/cylinder.mlx"
 flawed=

@@ -164,17 +164,11 @@ def test_a_result_crowded_with_holes_is_logged(capfd):
 
 
 def cad_cylinder(around=64, height=2.0):
-    """A closed cylinder as CAD tessellations write one: a row of long triangles round its
-    side, each cap a fan round a vertex at its centre."""
-    angle = 2 * np.pi * np.arange(around) / around
-    ring = np.column_stack([np.cos(angle), np.sin(angle), np.zeros(around)])
-    verts = np.vstack([ring, ring + [0, 0, height], [[0, 0, 0], [0, 0, height]]])
-    k, k1 = np.arange(around), (np.arange(around) + 1) % around
-    bottom, top = 2 * around, 2 * around + 1
-    faces = np.vstack([np.column_stack([k, k1, k1 + around]), np.column_stack([k, k1 + around, k + around]),
-                       np.column_stack([np.full(around, bottom), k1, k]),
-                       np.column_stack([np.full(around, top), k + around, k1 + around])])
-    return pymeshlab.Mesh(verts, faces.astype(np.int32))
+    """tests/integration/cad_cylinder_ply.py's CAD cylinder, as a layer."""
+    sys.path.insert(0, str(pathlib.Path(__file__).parents[1] / "integration"))
+    import cad_cylinder_ply as cylinder
+    points, faces = cylinder.mesh(around, height)
+    return pymeshlab.Mesh(np.array(points), np.array(faces, dtype=np.int32))
 
 
 def test_a_result_with_folded_quads_is_logged(capfd):
