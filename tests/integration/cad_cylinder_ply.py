@@ -8,6 +8,8 @@ Usage: cad_cylinder_ply.py OUT.ply [AROUND]
 import math
 import sys
 
+from ascii_ply import write_ply
+
 
 def mesh(around=64, height=2.0):
     """The cylinder's points and triangles, in the fixture's order: the side's triangles,
@@ -22,13 +24,7 @@ def mesh(around=64, height=2.0):
 
 
 def write(path, around=64, height=2.0):
-    points, faces = mesh(around, height)
-    with open(path, "w") as out:
-        out.write(f"ply\nformat ascii 1.0\nelement vertex {len(points)}\nproperty float x\nproperty float y\n"
-                  f"property float z\nelement face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
-        out.writelines(f"{x!r} {y!r} {z!r}\n" for x, y, z in points)
-        out.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
-    return str(path)
+    return write_ply(path, *mesh(around, height))
 
 
 if __name__ == "__main__":

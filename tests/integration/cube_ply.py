@@ -7,6 +7,8 @@ Usage: cube_ply.py OUT.ply [N]
 import struct
 import sys
 
+from ascii_ply import write_ply
+
 
 def write(path, n=12):
     pos, faces, index = [], [], {}
@@ -31,12 +33,7 @@ def write(path, n=12):
                 for i in range(n):
                     a, b, c, d = at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)
                     faces += [(a, b, c), (a, c, d)] if side else [(a, c, b), (a, d, c)]
-    with open(path, "w") as f:
-        f.write(f"ply\nformat ascii 1.0\nelement vertex {len(pos)}\nproperty float x\nproperty float y\n"
-                f"property float z\nelement face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
-        f.writelines(f"{x!r} {y!r} {z!r}\n" for x, y, z in pos)
-        f.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
-    return str(path)
+    return write_ply(path, pos, faces)
 
 
 if __name__ == "__main__":
