@@ -344,6 +344,11 @@ TEST_F(Cli, a_texture_reaches_obj_and_ply_quads) {
   EXPECT_NE(clash.out.find("would be written over the input's texture image"), std::string::npos) << clash.out;
   EXPECT_EQ(read("globe_texture.png"), image_before);
   EXPECT_FALSE(fs::exists(p("globe.obj")));
+  const CliRun convert_clash = run("convert " + p("globe.ply") + " " + p("globe.obj"));  // checked on its own
+  EXPECT_EQ(convert_clash.code, 2) << convert_clash.out;
+  EXPECT_NE(convert_clash.out.find("quadsimp convert: the quads' texture"), std::string::npos) << convert_clash.out;
+  EXPECT_EQ(read("globe_texture.png"), image_before);
+  EXPECT_FALSE(fs::exists(p("globe.obj")));
   // --texture-size bounds the atlas (and is refused out of its range).
   ASSERT_EQ(run("simplify " + in + " " + p("small.obj") + " --faces 150 --texture-size 64 -q").code, 0);
   const Image small = read_image(texture_path_of(p("small.obj")));
