@@ -66,15 +66,17 @@ void print_quality(const QuadQuality& q, const SurfaceDistance* d) {
 
 // The input's triangles remeshed (--remesh) for the conversion, or nothing to do. Sharp
 // edges stay edges at the crease angle, if one is given, so that the conversion finds them.
-Retriangulate remesher(const RemeshArgs& r, double crease_angle, Index target_quads, const std::string& name,
-                       const LogFn& log) {
+Retriangulate remesher(const RemeshArgs& r, double crease_angle, Index target_quads, double target_edge,
+                       const std::string& name, const LogFn& log) {
   if (!r.on) return {};
-  RemeshOptions options;
-  options.edge_share = r.edge_percent / 100;
-  options.target_quads = target_quads;
-  if (crease_angle > 0) options.feature_angle_deg = crease_angle;
+  RemeshOptions o;
+  o.edge_share = r.edge_percent / 100;
+  o.target_quads = target_quads;
+  if (crease_angle > 0) o.feature_angle_deg = crease_angle;
   return [=](const TriMesh& surface) {
     const auto t0 = std::chrono::steady_clock::now();
+    RemeshOptions options = o;
+    if (target_edge > 0) options.target_quads = faces_for_edge_length(surface_area(surface), target_edge);
     RemeshReport report;
     TriMesh out = remesh_isotropic(surface, options, &report);
     if (log) {
@@ -165,7 +167,7 @@ int run_convert(const ConvertArgs& a) {
     const LogFn log = stderr_log(a.quiet);
     ConvertOptions options;
     options.crease_angle_deg = a.crease_angle;
-    Input in = load_input(a.input, options, log, remesher(a.remesh, a.crease_angle, 0, a.input, log));
+    Input in = load_input(a.input, options, log, remesher(a.remesh, a.crease_angle, 0, 0, a.input, log));
     if (const std::string why = texture_clash(a.output, in); !why.empty()) {
       std::cerr << "quadsimp convert: " << why << "\n";
       return kBadArguments;
@@ -209,8 +211,9 @@ int run_simplify(const SimplifyArgs& a) {
   try {
     const auto t0 = std::chrono::steady_clock::now();
     const LogFn log = stderr_log(a.quiet);
-    Input in = load_input(a.input, convert_options(params), log,
-                          remesher(a.remesh, params.crease_angle, params.target_faces, a.input, log));
+    Input in =
+        load_input(a.input, convert_options(params), log,
+                   remesher(a.remesh, params.crease_angle, params.target_faces, params.target_edge, a.input, log));
     if (const std::string why = texture_clash(a.output, in); !why.empty()) {
       std::cerr << "quadsimp simplify: " << why << "\n";
       return kBadArguments;
@@ -218,6 +221,13 @@ int run_simplify(const SimplifyArgs& a) {
     const ReferenceSurface ref(std::move(in.reference));
     const Index converted = in.quads.n_faces();  // what a share of the quads is of
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
+    if (log && params.target_edge > 0) {
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    ": --edge-length %g: a target of %u quads (the surface's area, %g, over %g squared)",
+                    params.target_edge, r.target_faces, ref.area(), params.target_edge);
+      log(a.input + line);
+    }
     write_result(a.output, in, a.texture_size, log);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::vector<Index> flawed;  // ids of the compacted quads: the written file's faces

@@ -48,7 +48,7 @@ void add_remesh(CLI::App* command, qs::cli::RemeshArgs& remesh) {
                                "the remeshing, and distances measured from the input)");
   command->add_option("--remesh-edge", remesh.edge_percent,
                       "with --remesh: the edges' length in % of the bounding box's diagonal (default 1, shorter "
-                      "where --faces asks for more than about a fifth of the quads that would give, longer where it "
+                      "where --faces or --edge-length asks for more than about a fifth of the quads that would give, longer where it "
                       "would give over 200,000 triangles)")
       ->needs(on)
       ->check(CLI::Range(0.01, 100.0));
@@ -111,11 +111,17 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   s->add_option("OUT", simp.output, "output quad mesh (.ply, .obj or .off)")->required();
-  s->add_option_function<std::string>(
-       "-f,--faces", [&simp](const std::string& v) { parse_face_target(v, &simp.params); },
-       "target number of quads, or a share of the input's quads (10%)")
-      ->type_name("N|P%")
-      ->check(CLI::Validator([](std::string& v) { return parse_face_target(v, nullptr); }, ""));
+  auto* faces = s->add_option_function<std::string>(
+                     "-f,--faces", [&simp](const std::string& v) { parse_face_target(v, &simp.params); },
+                     "target number of quads, or a share of the input's quads (10%)")
+                    ->type_name("N|P%")
+                    ->check(CLI::Validator([](std::string& v) { return parse_face_target(v, nullptr); }, ""));
+  s->add_option("--edge-length", simp.params.target_edge,
+                "target: as many quads as quads of this edge length (in the input's units) take to cover the "
+                "input's surface, in place of --faces")
+      ->type_name("L")
+      ->check(number_above_zero())
+      ->excludes(faces);
   s->add_flag("--adaptive", simp.params.adaptive, "adaptive mode driven by fitmaps");
   s->add_flag(
       "--auto-halt", simp.params.auto_halt,

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <limits>
 #include <numeric>
@@ -231,6 +232,32 @@ TEST(Simplify, uniform_without_a_target_runs_until_nothing_collapses) {
   validate(c.quads);
   EXPECT_GT(r.collapses, 0u);
   EXPECT_LT(c.quads.n_faces(), 20u);
+}
+
+TEST(Pipeline, a_target_from_an_edge_length) {
+  EXPECT_EQ(faces_for_edge_length(12.0, 0.5), 48u);
+  EXPECT_EQ(faces_for_edge_length(1.0, 10.0), 1u);  // at least one quad
+  EXPECT_EQ(faces_for_edge_length(1.0, 1e-10), Index(std::numeric_limits<std::int32_t>::max()));
+  SimplifyParams p;
+  p.target_edge = 0.5;
+  EXPECT_EQ(check_params(p), "");
+  EXPECT_EQ(target_faces_of(p, 1000, 12.0), 48u);
+  p.adaptive = true;
+  EXPECT_EQ(check_params(p), "");
+  p.auto_halt = true;
+  EXPECT_NE(check_params(p).find("automatic halting, not both"), std::string::npos);
+  p.auto_halt = false;
+  p.target_faces = 100;
+  EXPECT_NE(check_params(p).find("a target edge length, not both"), std::string::npos);
+  p.target_faces = 0, p.target_share = 0.5;
+  EXPECT_NE(check_params(p).find("a target edge length, not both"), std::string::npos);
+  p.target_share = 0;
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    p.target_edge = bad;
+    EXPECT_NE(check_params(p), "") << bad;
+  }
+  p.target_edge = 0, p.target_faces = 7;  // without an edge length the count stands
+  EXPECT_EQ(target_faces_of(p, 1000, 12.0), 7u);
 }
 
 TEST(Simplify, torus_reaches_target) {

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iterator>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -17,7 +19,10 @@ namespace qs {
 
 std::string check_params(const SimplifyParams& p) {
   if (!(p.target_share >= 0 && p.target_share <= 1)) return "the target share must be in [0, 1]";
-  const bool target = p.target_faces != 0 || p.target_share > 0;
+  if (!(p.target_edge >= 0 && std::isfinite(p.target_edge))) return "the target edge length must be a number from 0";
+  if ((p.target_faces != 0 || p.target_share > 0) && p.target_edge > 0)
+    return "give either a target number of faces or a target edge length, not both";
+  const bool target = p.target_faces != 0 || p.target_share > 0 || p.target_edge > 0;
   if (!p.adaptive && p.auto_halt) return "automatic halting needs the adaptive mode";
   if (!p.adaptive && !target) return "the uniform mode needs a target number of faces";
   if (p.adaptive && p.auto_halt && target) return "give either a target number of faces or automatic halting, not both";
@@ -39,7 +44,16 @@ ConvertOptions convert_options(const SimplifyParams& p) {
   return o;
 }
 
-Index target_faces_of(const SimplifyParams& p, Index quads) {
+Index faces_for_edge_length(double area, double edge) {
+  const double n = area / (edge * edge);
+  // Past the index range the count is no target anyone can mean; the loop then has nothing
+  // to do, as with any target above the input's quads.
+  if (!(n < double(std::numeric_limits<std::int32_t>::max()))) return std::numeric_limits<std::int32_t>::max();
+  return std::max<Index>(1, Index(std::lround(n)));
+}
+
+Index target_faces_of(const SimplifyParams& p, Index quads, double area) {
+  if (p.target_edge > 0) return faces_for_edge_length(area, p.target_edge);
   if (!(p.target_share > 0)) return p.target_faces;
   return std::max<Index>(1, Index(std::lround(p.target_share * double(quads))));
 }
@@ -82,7 +96,7 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
   SimplifyOptions opt = simplify_options(p, &fitmaps);
   const Creases creases(ref.mesh(), ref.adjacency(), p.crease_angle);
   opt.creases = &creases;
-  opt.target_faces = target_faces_of(p, in.quads.n_faces());
+  opt.target_faces = target_faces_of(p, in.quads.n_faces(), ref.area());
   opt.progress = progress;
   SimplifyReport r = simplify(in.quads, ref, opt);
   if (p.fit_to_input && !r.cancelled) {
