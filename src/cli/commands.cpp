@@ -220,14 +220,15 @@ int run_simplify(const SimplifyArgs& a) {
     }
     const ReferenceSurface ref(std::move(in.reference));
     const Index converted = in.quads.n_faces();  // what a share of the quads is of
-    const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
-    if (log && params.target_edge > 0) {
+    if (log && params.target_edge > 0) {  // before the run, which may be long
       char line[200];
       std::snprintf(line, sizeof line,
                     ": --edge-length %g: a target of %u quads (the surface's area, %g, over %g squared)",
-                    params.target_edge, r.target_faces, ref.area(), params.target_edge);
+                    params.target_edge, faces_for_edge_length(ref.area(), params.target_edge), ref.area(),
+                    params.target_edge);
       log(a.input + line);
     }
+    const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
     write_result(a.output, in, a.texture_size, log);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::vector<Index> flawed;  // ids of the compacted quads: the written file's faces

@@ -48,8 +48,8 @@ void add_remesh(CLI::App* command, qs::cli::RemeshArgs& remesh) {
                                "the remeshing, and distances measured from the input)");
   command->add_option("--remesh-edge", remesh.edge_percent,
                       "with --remesh: the edges' length in % of the bounding box's diagonal (default 1, shorter "
-                      "where --faces or --edge-length asks for more than about a fifth of the quads that would give, longer where it "
-                      "would give over 200,000 triangles)")
+                      "where --faces or --edge-length asks for more than about a fifth of the quads that would "
+                      "give, longer where it would give over 200,000 triangles)")
       ->needs(on)
       ->check(CLI::Range(0.01, 100.0));
 }

@@ -19,8 +19,9 @@ struct SimplifyParams {
   //! target_faces (one setting for a batch of meshes of different sizes).
   double target_share = 0;
   //! Above 0: the target is the number of quads of about this edge length (in the input's
-  //! units) that cover the input's surface, faces_for_edge_length(), in place of
-  //! target_faces (one setting for meshes of one scale, as Instant Meshes' --scale).
+  //! units) that cover the reference surface (the input, or its remeshing),
+  //! faces_for_edge_length(), in place of target_faces (one setting for meshes of one
+  //! scale, as Instant Meshes' --scale).
   double target_edge = 0;
   bool adaptive = false;
   bool auto_halt = false;        //!< adaptive: stop once the M-fitmap blocks halt_share of the surface
