@@ -761,7 +761,38 @@ TEST_F(MeshIo, text_files_with_comments_colours_and_signs_are_read) {
     EXPECT_EQ(f.positions.size(), 4u) << p;
     EXPECT_EQ(f.positions[2], Vec3(1, 1, 0)) << p;
     EXPECT_EQ(f.triangles.size(), 2u) << p;
+    EXPECT_EQ(f.skipped_lines, 0u) << p;  // normals, objects, groups, lines: statements
   }
+}
+
+// An OBJ statement goes on over lines that end in a backslash outside a comment, and
+// messages give the line it starts on. A line that begins with no statement is skipped
+// and counted (damage: a vertex whose "v" was lost shifts every later one), and loading
+// says so before the repairs it may bring.
+TEST_F(MeshIo, obj_continued_lines_and_lines_of_no_statement) {
+  const MeshFile f = read_mesh(write("on.obj", "v 0 0 0\nv 1 0 \\\n  0\nv 1 1 0\nv 0 1 0\nf 1 2 \\\n 3 4\n"
+                                                "# a comment \\\nf 1 3 4\n"));
+  ASSERT_EQ(f.positions.size(), 4u);
+  EXPECT_EQ(f.positions[1], Vec3(1, 0, 0));
+  EXPECT_EQ(f.quads.size(), 1u);      // the face over two lines
+  EXPECT_EQ(f.triangles.size(), 1u);  // after the comment's backslash, on its own
+  try {
+    read_mesh(write("bad.obj", "v 0 0 0\nv 1 0 \\\n0\nv 1 1 0\nf 1 2 \\\n9\n"));
+    ADD_FAILURE() << "a corner past the vertices was read";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.obj: line 5: face corner 9"), std::string::npos) << e.what();
+  }
+  const MeshFile lost = read_mesh(write("lost.obj", "v 0 0 0\n0.5 1 0\nv 1 1 0\nv 0 1 0\ns off\nf 1 2 3\nfoo 1\n"));
+  EXPECT_EQ(lost.positions.size(), 3u);
+  EXPECT_EQ(lost.skipped_lines, 2u);
+  EXPECT_EQ(lost.first_skipped, "line 2, '0.5'");
+  std::vector<std::string> notes;
+  cleaned_surface(lost, "lost.obj", [&](std::string_view s) { notes.emplace_back(s); });
+  ASSERT_FALSE(notes.empty());
+  EXPECT_EQ(notes[0].rfind("lost.obj: 2 line(s) that begin with no OBJ statement skipped (the first: line 2, '0.5')",
+                           0),
+            0u)
+      << notes[0];
 }
 
 // vcglib reads an STL as binary where its size is its facet count's, or where its first

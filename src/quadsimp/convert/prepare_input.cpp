@@ -42,6 +42,10 @@ TriMesh cleaned_surface(const MeshFile& file, const std::string& name, const Log
   // defect whoever made the mesh: a scan paired into quads keeps its Z-folds' quads
   // folded. Any folded quad once let every fold of the file be laid flat: the armadillo's
   // 800 uniform quads, one folded at a foot, had an ear's tip moved by 10% of the diagonal.
+  // First: the repairs that follow may come of it.
+  if (file.skipped_lines && log)
+    log(name + ": " + std::to_string(file.skipped_lines) + " line(s) that begin with no OBJ statement skipped (the " +
+        "first: " + file.first_skipped + "); if a vertex's 'v' was lost, every later vertex is out of place");
   CleanOptions options;
   if (file.is_pure_quad()) {
     const auto& P = file.positions;

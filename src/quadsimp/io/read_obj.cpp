@@ -6,6 +6,7 @@
 // face's corners as more corners. It also took 2.7 s on a 1.1M-triangle file.
 #include <algorithm>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <string_view>
 #include <unordered_map>
@@ -92,8 +93,19 @@ constexpr Colour kMeshLabGrey{192, 192, 192, 255};
 
 }  // namespace
 
+// The statements of the OBJ format (geometry, grouping, display and rendering
+// attributes), and QOBJ's quads: lines that begin with anything else are damage.
+bool is_obj_statement(std::string_view kw) {
+  static constexpr std::string_view kStatements[] = {
+      "bevel",     "bmat", "c_interp", "con",    "cstype", "ctech",      "curv",   "curv2", "d_interp", "deg",
+      "end",       "f",    "g",        "hole",   "l",      "lod",        "maplib", "mg",    "mtllib",   "o",
+      "p",         "parm", "q",        "s",      "scrv",   "shadow_obj", "sp",     "stech", "step",     "surf",
+      "trace_obj", "trim", "usemap",   "usemtl", "v",      "vn",         "vp",     "vt"};
+  return std::find(std::begin(kStatements), std::end(kStatements), kw) != std::end(kStatements);
+}
+
 MeshFile read_obj(const std::string& path) {
-  detail::TextLines in(path);
+  detail::TextLines in(path, true);
   std::vector<Vec3> positions;
   // Vertex colours after the coordinates, as fractions (MeshLab's extension); kept only if
   // every vertex has one.
@@ -119,6 +131,8 @@ MeshFile read_obj(const std::string& path) {
   std::map<std::string, int> image_number;
   std::vector<Index> corners;
   std::vector<TexCoord> corner_coords;
+  Index skipped = 0;
+  std::string first_skipped;
   const auto n = [&positions] { return static_cast<long long>(positions.size()); };
   while (in.next()) {
     const std::string_view kw = in[0];
@@ -181,6 +195,8 @@ MeshFile read_obj(const std::string& path) {
       const auto it = materials.find(name_on(in));
       material = it != materials.end() ? &it->second : nullptr;
       if (material) colour = material->colour;
+    } else if (!is_obj_statement(kw) && !skipped++) {
+      first_skipped = "line " + std::to_string(in.line_number()) + ", " + detail::quoted(kw);
     }
   }
   const bool keep_texture = coordinates_read && some_textured;
@@ -188,6 +204,8 @@ MeshFile read_obj(const std::string& path) {
   MeshFile out = pair_faux_triangles(std::move(positions), std::move(triangles), faux, face_colours);
   if (coloured) out.colours = std::move(colours);
   out.texture_coordinates = textured;
+  out.skipped_lines = skipped;
+  out.first_skipped = std::move(first_skipped);
   if (keep_texture) {
     texture.images.resize(image_number.size());
     for (const auto& [path, k] : image_number) texture.images[std::size_t(k)] = path;

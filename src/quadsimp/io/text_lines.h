@@ -40,14 +40,24 @@ inline void split_fields(std::string_view line, std::vector<std::string_view>& f
 
 class TextLines {
  public:
-  explicit TextLines(const std::string& path) : path_(path), in_(path) {
+  //! With `continued_lines` (OBJ), a line whose last character outside a comment is a
+  //! backslash goes on on the next one, as the format has it.
+  explicit TextLines(const std::string& path, bool continued_lines = false)
+      : path_(path), in_(path), continued_lines_(continued_lines) {
     if (!in_) throw InvalidInput(path_ + ": cannot be opened for reading");
   }
 
-  //! Moves to the next line with a field; false at the end of the file.
+  //! Moves to the next line with a field; false at the end of the file. Messages give the
+  //! line a statement starts on.
   bool next() {
     while (std::getline(in_, line_)) {
-      if (++number_ == 1 && line_.rfind("\xEF\xBB\xBF", 0) == 0) line_.erase(0, 3);  // a UTF-8 byte order mark
+      number_ = ++read_;
+      if (read_ == 1 && line_.rfind("\xEF\xBB\xBF", 0) == 0) line_.erase(0, 3);  // a UTF-8 byte order mark
+      while (continued_lines_ && goes_on(line_) && std::getline(in_, more_)) {
+        line_ += ' ';
+        line_ += more_;
+        ++read_;
+      }
       split_fields(std::string_view(line_).substr(0, line_.find('#')), fields_);
       if (!fields_.empty()) return true;
     }
@@ -100,12 +110,21 @@ class TextLines {
   [[noreturn]] void ends(const std::string& before) const {
     throw InvalidInput(path_ + ": the file ends " + before);
   }
+  long line_number() const { return number_; }
 
  private:
+  // Whether `line` ends in a backslash outside a comment; drops it if so.
+  static bool goes_on(std::string& line) {
+    const std::size_t end = line.find_last_not_of(" \t\r");
+    if (end == std::string::npos || line[end] != '\\' || line.find('#') < end) return false;
+    line.resize(end);
+    return true;
+  }
   std::string path_;
   std::ifstream in_;
-  std::string line_;
-  long number_ = 0;
+  bool continued_lines_;
+  std::string line_, more_;
+  long number_ = 0, read_ = 0;  // the statement's first line, and the lines read
   std::vector<std::string_view> fields_;
 };
 

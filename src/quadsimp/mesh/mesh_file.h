@@ -53,6 +53,10 @@ struct MeshFile {
   bool texture_coordinates = false;
   //! Its texture, where every face has coordinates into an image; else empty.
   FileTexture texture = {};
+  //! An OBJ's lines that begin with no OBJ statement, skipped (damage: a vertex whose "v"
+  //! was lost shifts every later one): how many, and where the first is, for the log.
+  Index skipped_lines = 0;
+  std::string first_skipped = {};
   bool is_pure_quad() const { return !quads.empty() && triangles.empty(); }
   bool has_face_colours() const { return !triangle_colours.empty() || !quad_colours.empty(); }
 };
