@@ -35,6 +35,10 @@ double thin_area_share(const TriMesh& t) {
 }  // namespace
 
 TriMesh cleaned_surface(const MeshFile& file, const std::string& name, const LogFn& log, CleanReport* report) {
+  // First: the repairs that follow may come of it.
+  if (file.skipped_lines && log)
+    log(name + ": " + std::to_string(file.skipped_lines) + " line(s) that begin with no OBJ statement skipped (the " +
+        "first: " + file.first_skipped + "); if a vertex's 'v' was lost, every later vertex is out of place");
   // A quad mesh is someone's surface, not a raw scan, and a coarse one's thin parts have
   // edges as sharp as a fold's bounds: the armadillo simplified to 1,000 quads, loaded
   // again, had a claw's tip laid flat, its vertices moved by up to 28% of the diagonal
@@ -42,10 +46,6 @@ TriMesh cleaned_surface(const MeshFile& file, const std::string& name, const Log
   // defect whoever made the mesh: a scan paired into quads keeps its Z-folds' quads
   // folded. Any folded quad once let every fold of the file be laid flat: the armadillo's
   // 800 uniform quads, one folded at a foot, had an ear's tip moved by 10% of the diagonal.
-  // First: the repairs that follow may come of it.
-  if (file.skipped_lines && log)
-    log(name + ": " + std::to_string(file.skipped_lines) + " line(s) that begin with no OBJ statement skipped (the " +
-        "first: " + file.first_skipped + "); if a vertex's 'v' was lost, every later vertex is out of place");
   CleanOptions options;
   if (file.is_pure_quad()) {
     const auto& P = file.positions;

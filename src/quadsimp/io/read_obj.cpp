@@ -91,8 +91,6 @@ bool texture_corner(std::string_view corner, std::size_t n, std::size_t& index) 
 // What MeshLab (vcglib's OBJ reader) gives a face before any material.
 constexpr Colour kMeshLabGrey{192, 192, 192, 255};
 
-}  // namespace
-
 // The statements of the OBJ format (geometry, grouping, display and rendering
 // attributes), and QOBJ's quads: lines that begin with anything else are damage.
 bool is_obj_statement(std::string_view kw) {
@@ -103,6 +101,8 @@ bool is_obj_statement(std::string_view kw) {
       "trace_obj", "trim", "usemap",   "usemtl", "v",      "vn",         "vp",     "vt"};
   return std::find(std::begin(kStatements), std::end(kStatements), kw) != std::end(kStatements);
 }
+
+}  // namespace
 
 MeshFile read_obj(const std::string& path) {
   detail::TextLines in(path, true);
