@@ -83,6 +83,12 @@ std::vector<float> ply_vertex_property(const std::string& path, const std::strin
   return values;
 }
 
+// The number a JSON object gives `key` (NaN without one, which fails any comparison).
+double json_number(const std::string& json, const std::string& key) {
+  const std::size_t at = json.find("\"" + key + "\": ");
+  return at == std::string::npos ? std::nan("") : std::stod(json.substr(at + key.size() + 4));
+}
+
 // The indices of a JSON object's "flawed_faces" list (empty without one).
 std::vector<std::size_t> flawed_faces_in(const std::string& json) {
   std::vector<std::size_t> ids;
@@ -510,16 +516,13 @@ TEST_F(Cli, faces_as_a_share_of_the_input) {
   for (const std::string mode : {"", " --adaptive"}) {
     const CliRun r = run("simplify " + input_ + " " + p("s.ply") + " --faces 62.5% --json -q --samples 1000" + mode);
     ASSERT_EQ(r.code, 0) << r.out;
-    const auto number = [&r](const std::string& key) {
-      const std::size_t at = r.out.find("\"" + key + "\": ");
-      return at == std::string::npos ? -1L : std::stol(r.out.substr(at + key.size() + 4));
-    };
-    EXPECT_EQ(number("faces"), std::lround(0.625 * double(quads))) << mode;
+    const auto number = [&r](const std::string& key) { return json_number(r.out, key); };
+    EXPECT_EQ(number("faces"), double(std::lround(0.625 * double(quads)))) << mode;
     EXPECT_EQ(number("target_faces"), number("faces"));
     // The share is of the quads the input converts to (converted_faces), which input_faces,
     // counted after the loop's first doublet cleaning, may be under.
-    EXPECT_EQ(number("converted_faces"), quads);
-    EXPECT_LE(number("input_faces"), quads);
+    EXPECT_EQ(number("converted_faces"), double(quads));
+    EXPECT_LE(number("input_faces"), double(quads));
   }
   const CliRun r = run("simplify " + input_ + " " + p("s.ply") + " --faces 10% --adaptive --auto-halt");
   EXPECT_EQ(r.code, 2);
@@ -538,10 +541,7 @@ TEST_F(Cli, faces_from_an_edge_length) {
     const CliRun r = run("simplify " + in + " " + p("e.ply") + " --edge-length 0.2 --json --samples 1000" + mode);
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find("a target of " + std::to_string(want) + " quads"), std::string::npos) << r.out;
-    const auto number = [&r](const std::string& key) {
-      const std::size_t at = r.out.find("\"" + key + "\": ");
-      return at == std::string::npos ? -1.0 : std::stod(r.out.substr(at + key.size() + 4));
-    };
+    const auto number = [&r](const std::string& key) { return json_number(r.out, key); };
     EXPECT_EQ(number("target_faces"), double(want)) << mode;
     EXPECT_EQ(number("faces"), double(want)) << mode;
     // Near-square quads: the mean edge comes out near the one asked for (1.002 measured
@@ -871,9 +871,9 @@ TEST_F(Cli, fit_to_input_lowers_the_distance) {
   auto rms = [&](const std::string& extra) {
     const CliRun r = run("simplify " + input_ + " " + p("s.ply") + " --faces 60 --json -q --samples 20000" + extra);
     EXPECT_EQ(r.code, 0) << r.out;
-    const auto at = r.out.find("\"rms_e3\": ");
-    EXPECT_NE(at, std::string::npos) << r.out;
-    return at == std::string::npos ? 0.0 : std::stod(r.out.substr(at + 10));
+    const double x = json_number(r.out, "rms_e3");
+    EXPECT_FALSE(std::isnan(x)) << r.out;
+    return std::isnan(x) ? 0.0 : x;
   };
   const double plain = rms(""), fitted = rms(" --fit-to-input");
   EXPECT_GT(plain, 0.0);
