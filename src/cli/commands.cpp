@@ -220,12 +220,11 @@ int run_simplify(const SimplifyArgs& a) {
     }
     const ReferenceSurface ref(std::move(in.reference));
     const Index converted = in.quads.n_faces();  // what a share of the quads is of
-    if (log && params.target_edge > 0) {  // before the run, which may be long
+    if (log && params.target_edge > 0) {  // before the run, which may be long; the count the pipeline takes
       char line[200];
       std::snprintf(line, sizeof line,
                     ": --edge-length %g: a target of %u quads (the surface's area, %g, over %g squared)",
-                    params.target_edge, faces_for_edge_length(ref.area(), params.target_edge), ref.area(),
-                    params.target_edge);
+                    params.target_edge, target_faces_of(params, converted, ref.area()), ref.area(), params.target_edge);
       log(a.input + line);
     }
     const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));

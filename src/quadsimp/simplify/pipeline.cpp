@@ -146,8 +146,8 @@ std::string holes_note(const QuadQuality& q) {
 
 std::vector<std::string> result_notes(const SimplifyReport& r, const QuadQuality& q, Index target_faces) {
   std::vector<std::string> notes;
-  for (std::string note : {target_shortfall(r, target_faces), defects_note(q, Index(r.beyond_reach_faces.size())), holes_note(q),
-                           creases_note(r, q, target_faces)})
+  for (std::string note : {target_shortfall(r, target_faces), defects_note(q, Index(r.beyond_reach_faces.size())),
+                           holes_note(q), creases_note(r, q, target_faces)})
     if (!note.empty()) notes.push_back(std::move(note));
   return notes;
 }
