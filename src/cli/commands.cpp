@@ -1,6 +1,8 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include "cli/commands.h"
 
+#include <tbb/global_control.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -251,7 +253,9 @@ int run_simplify(const SimplifyArgs& a) {
         std::snprintf(share, sizeof share, "%.4f", r.blocked_share);
         std::snprintf(seconds, sizeof seconds, "%.4f", s);
         const std::string extra =
-            std::string(", \"seconds\": ") + seconds + ", \"collapses\": " + n(r.collapses) +
+            std::string(", \"seconds\": ") + seconds + ", \"threads\": " +
+            n(Index(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))) +
+            ", \"collapses\": " + n(r.collapses) +
             ", \"border_collapses\": " + n(r.border_collapses) + ", \"border_insets\": " + n(r.border_insets) +
             ", \"tips\": " + n(r.tips) + ", \"chord_collapses\": " + n(r.chord_collapses) +
             ", \"rotations\": " + n(r.rotations) + ", \"crease_collapses\": " + n(r.crease_collapses) +

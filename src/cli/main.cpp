@@ -1,9 +1,12 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
+#include <tbb/global_control.h>
+
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <exception>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -14,13 +17,19 @@ namespace {
 
 // CLI11's PositiveNumber answers 0 with "Value 0 not in range 0.000000 to" and the
 // largest double in 309 digits; these say what is wanted.
-std::string not_a_whole_number_from_one(const std::string& s) {
+std::string not_a_whole_number(const std::string& s, unsigned least, unsigned most) {
   unsigned long long x = 0;
-  const unsigned long long most = std::numeric_limits<unsigned>::max();
-  if (!qs::parse_number(s, x) || x < 1 || x > most)
-    return "'" + s + "' is not a whole number from 1 to " + std::to_string(most);
+  if (!qs::parse_number(s, x) || x < least || x > most)
+    return "'" + s + "' is not a whole number from " + std::to_string(least) + " to " + std::to_string(most);
   return {};
 }
+
+std::string not_a_whole_number_from_one(const std::string& s) {
+  return not_a_whole_number(s, 1, std::numeric_limits<unsigned>::max());
+}
+
+// A bound against typos (-j 10000): threads beyond the cores only take turns on them.
+constexpr unsigned kMostThreads = 1024;
 
 CLI::Validator whole_number_from_one() {
   return CLI::Validator([](std::string& s) { return not_a_whole_number_from_one(s); }, "N>=1");
@@ -95,6 +104,16 @@ int main(int argc, char** argv) {
   CLI::App app{"quadsimp: adaptive quad mesh simplification (Bozzo et al. 2010)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "quadsimp 0.1.0");
+  // Before the subcommands, so that they inherit it: --threads goes before or after the
+  // subcommand's name.
+  app.fallthrough();
+  unsigned threads = 0;
+  app.add_option("-j,--threads", threads,
+                 "run the parallel parts (fitmaps, distance sampling, BVH builds) on at most this many threads "
+                 "(0: as many as the machine has); the output is the same whatever the number")
+      ->capture_default_str()
+      ->type_name("N")
+      ->check(CLI::Validator([](std::string& s) { return not_a_whole_number(s, 0, kMostThreads); }, ""));
 
   ConvertArgs convert;
   auto* c = app.add_subcommand("convert", "Convert a triangle mesh (PLY, OBJ, OFF, STL) into a pure quad mesh");
@@ -217,6 +236,9 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? kOk : kBadArguments;
   }
+  // Every parallel loop of the core and Embree's builds run in TBB's arena, which this caps.
+  std::optional<tbb::global_control> thread_limit;
+  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
   try {
     if (*c) return run_convert(convert);
     if (*s) return run_simplify(simp);

@@ -604,6 +604,49 @@ TEST_F(Cli, simplify_stats_and_fitmap) {
   EXPECT_EQ(run("simplify " + input_ + " " + out + " --adaptive --auto-halt -q").code, 0);
 }
 
+// --threads caps the parallel parts (fitmaps, distance sampling, Embree's builds), before or
+// after the subcommand's name, and changes no output: the moai's adaptive run, its fitmaps
+// and its distances are byte for byte the same on one thread, on two and on the default.
+TEST_F(Cli, threads_cap_the_parallel_parts_and_change_no_output) {
+  const std::string moai = fixtures::shared_dataset("moai");
+  if (moai.empty()) GTEST_SKIP() << "../shared/datasets not found";
+  const std::string args = " simplify " + moai + " --adaptive --auto-halt --json --samples 20000 -q ";
+  const std::vector<std::pair<std::string, std::string>> runs = {
+      {"-j 1" + args + p("one.ply"), "one.ply"},
+      {args + p("two.ply") + " --threads 2", "two.ply"},
+      {args + p("all.ply"), "all.ply"}};
+  std::vector<std::string> json;
+  for (const auto& [command, out] : runs) {
+    const CliRun r = run(command);
+    ASSERT_EQ(r.code, 0) << command << ": " << r.out;
+    json.push_back(r.out);
+  }
+  // The cap in force, as TBB reports it: on the machine's own count without one.
+  EXPECT_EQ(json_number(json[0], "threads"), 1) << json[0];
+  EXPECT_EQ(json_number(json[1], "threads"), 2) << json[1];
+  EXPECT_GE(json_number(json[2], "threads"), 1) << json[2];
+  EXPECT_GT(read("one.ply").size(), 1000u);
+  EXPECT_EQ(read("one.ply"), read("two.ply"));
+  EXPECT_EQ(read("one.ply"), read("all.ply"));
+  for (const std::string key : {"faces", "rms_e3", "hausdorff_e3", "projectability"})
+    EXPECT_EQ(json_number(json[0], key), json_number(json[1], key)) << key;
+  EXPECT_EQ(run("-j 1 fitmap " + moai + " " + p("f1.ply") + " -q").code, 0);
+  EXPECT_EQ(run("fitmap " + moai + " " + p("f2.ply") + " -q --threads 2").code, 0);
+  EXPECT_GT(read("f1.ply").size(), 1000u);
+  EXPECT_EQ(read("f1.ply"), read("f2.ply"));
+  const CliRun one = run("--threads 1 stats " + moai + " " + p("one.ply") + " --json --samples 20000");
+  const CliRun two = run("stats " + moai + " " + p("one.ply") + " --json --samples 20000 -j 2");
+  EXPECT_EQ(one.code, 0) << one.out;
+  EXPECT_EQ(one.out, two.out);
+  for (const std::string bad : {"-1", "1.5", "lots", "1025"}) {
+    const CliRun r = run("--threads " + bad + " simplify " + moai + " " + p("x.ply") + " -f 100");
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_NE(r.out.find("--threads: '" + bad + "' is not a whole number from 0 to 1024"), std::string::npos)
+        << r.out;
+  }
+  EXPECT_FALSE(fs::exists(p("x.ply")));
+}
+
 // A terminal sees each stage's bar, redrawn in place once per percent; a pipe (a log
 // file, the tests above) sees none, and neither does --quiet.
 TEST_F(Cli, a_terminal_gets_a_progress_bar_and_a_pipe_none) {
