@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -139,9 +140,54 @@ void write_result(const std::string& output, const Input& in, int texture_size, 
                   texture);
 }
 
-void print_summary(const SimplifyArgs& a, const QuadQuality& q, double seconds, const SimplifyReport& r) {
-  std::printf("%s -> %s: %u faces, regular %.1f%%, max valence %d, %.2f s (%s)\n", a.input.c_str(), a.output.c_str(),
+void print_summary(const std::string& input, const std::string& output, const QuadQuality& q, double seconds,
+                   const SimplifyReport& r) {
+  std::printf("%s -> %s: %u faces, regular %.1f%%, max valence %d, %.2f s (%s)\n", input.c_str(), output.c_str(),
               q.faces, q.regular_percent, q.max_valence, seconds, operations_done(r).c_str());
+}
+
+// simplify --json: the result's quality and distance, and what the run did. `seconds` since
+// the run started; `converted` quads the input converted to.
+std::string simplify_json(const QuadQuality& q, const SurfaceDistance& d, const std::vector<Index>& flawed,
+                          const SimplifyReport& r, double seconds, Index converted) {
+  std::string j = to_json(q, &d, &flawed);
+  const auto n = [](Index x) { return std::to_string(x); };
+  char share[32], time[32];
+  std::snprintf(share, sizeof share, "%.4f", r.blocked_share);
+  std::snprintf(time, sizeof time, "%.4f", seconds);
+  j.pop_back();
+  return j + ", \"seconds\": " + time + ", \"threads\": " +
+         n(Index(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))) +
+         ", \"collapses\": " + n(r.collapses) + ", \"border_collapses\": " + n(r.border_collapses) +
+         ", \"border_insets\": " + n(r.border_insets) + ", \"tips\": " + n(r.tips) +
+         ", \"chord_collapses\": " + n(r.chord_collapses) + ", \"rotations\": " + n(r.rotations) +
+         ", \"crease_collapses\": " + n(r.crease_collapses) + ", \"crease_vertices\": " + n(r.crease_vertices) +
+         ", \"unfolds\": " + n(r.unfolds) + ", \"converted_faces\": " + n(converted) +
+         ", \"input_faces\": " + n(r.initial_faces) + ", \"target_faces\": " + n(r.target_faces) +
+         ", \"refused\": {\"topology\": " + n(r.refused_topology) + ", \"valence\": " + n(r.refused_valence) +
+         ", \"geometry\": " + n(r.refused_geometry) + ", \"fitmap\": " + n(r.refused_fitmap) +
+         ", \"reach\": " + n(r.refused_reach) + "}, \"blocked_share\": " + share +
+         ", \"predicted_faces\": " + n(Index(std::lround(r.predicted_faces))) + "}";
+}
+
+// The levels' parameters: a.params with each of a.targets in turn (a.params alone with
+// none: automatic halting).
+std::vector<SimplifyParams> level_params(const SimplifyArgs& a) {
+  if (a.targets.empty()) return {a.params};
+  std::vector<SimplifyParams> levels;
+  for (const Target& t : a.targets) {
+    SimplifyParams p = a.params;
+    p.target_faces = t.faces, p.target_share = t.share, p.target_edge = t.edge;
+    levels.push_back(p);
+  }
+  return levels;
+}
+
+// Where the level of `count` quads goes when there are several: OUT with _count before
+// its extension (out.ply: out_2000.ply).
+std::string level_path(const std::string& output, Index count) {
+  const std::filesystem::path p(output);
+  return (p.parent_path() / (p.stem().string() + "_" + std::to_string(count) + p.extension().string())).string();
 }
 
 }  // namespace
@@ -201,80 +247,80 @@ int run_convert(const ConvertArgs& a) {
 }
 
 int run_simplify(const SimplifyArgs& a) {
-  if (auto err = check_output_path(a.input, a.output); !err.empty()) {
-    std::cerr << "quadsimp simplify: " << err << "\n";
+  const auto refuse = [](const std::string& why) {
+    std::cerr << "quadsimp simplify: " << why << "\n";
     return kBadArguments;
-  }
-  const SimplifyParams& params = a.params;
-  if (const std::string why = check_params(params); !why.empty()) {
-    std::cerr << "quadsimp simplify: " << why << " (see --help)\n";
-    return kBadArguments;
+  };
+  if (auto err = check_output_path(a.input, a.output); !err.empty()) return refuse(err);
+  const std::vector<SimplifyParams> levels = level_params(a);
+  for (const SimplifyParams& p : levels)
+    if (const std::string why = check_params(p); !why.empty()) return refuse(why + " (see --help)");
+  const SimplifyParams& params = levels.front();  // the levels differ in their targets alone
+  // The remeshing makes triangles enough for the finest level.
+  Index most = 0;
+  double finest = 0;
+  for (const SimplifyParams& p : levels) {
+    most = std::max(most, p.target_faces);
+    if (p.target_edge > 0 && !(finest > 0 && finest <= p.target_edge)) finest = p.target_edge;
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
     const LogFn log = stderr_log(a.quiet);
-    Input in =
-        load_input(a.input, convert_options(params), log,
-                   remesher(a.remesh, params.crease_angle, params.target_faces, params.target_edge, a.input, log));
-    if (const std::string why = texture_clash(a.output, in); !why.empty()) {
-      std::cerr << "quadsimp simplify: " << why << "\n";
-      return kBadArguments;
-    }
+    Input in = load_input(a.input, convert_options(params), log,
+                          remesher(a.remesh, params.crease_angle, most, finest, a.input, log));
     const ReferenceSurface ref(std::move(in.reference));
     const Index converted = in.quads.n_faces();  // what a share of the quads is of
-    if (log && params.target_edge > 0) {  // before the run, which may be long; the count the pipeline takes
-      char line[200];
-      std::snprintf(line, sizeof line,
-                    ": --edge-length %g: a target of %u quads (the surface's area, %g, over %g squared)",
-                    params.target_edge, target_faces_of(params, converted, ref.area()), ref.area(), params.target_edge);
-      log(a.input + line);
+    // The levels' counts, most quads first, and the files they go to.
+    std::vector<Index> counts;
+    for (const SimplifyParams& p : levels) {
+      counts.push_back(target_faces_of(p, converted, ref.area()));
+      if (log && p.target_edge > 0) {  // before the run, which may be long; the count the pipeline takes
+        char line[200];
+        std::snprintf(line, sizeof line,
+                      ": --edge-length %g: a target of %u quads (the surface's area, %g, over %g squared)",
+                      p.target_edge, counts.back(), ref.area(), p.target_edge);
+        log(a.input + line);
+      }
     }
-    const SimplifyReport r = simplify_input(in, ref, params, progress_bar(a.quiet));
-    write_result(a.output, in, a.texture_size, log);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::vector<Index> flawed;  // ids of the compacted quads: the written file's faces
-    const QuadQuality q = quad_quality(in.quads, &ref, &flawed);
-    flawed = noted_faces(flawed, r);
-    if (log)
-      for (const std::string& note : result_notes(r, q, r.target_faces)) log(note);
-    if (a.json || a.stats) {
-      // From the input as given, as `quadsimp stats` measures it, not from its remeshing. The
-      // quads' orientation is still judged against the remeshing: the normals a coarse CAD
-      // mesh interpolates across its sharp edges face away from its flat sides (a 33-sided
-      // cone at automatic halting: 38 of 2,388 quads "flipped" against its file, none against
-      // the remeshing).
-      std::optional<ReferenceSurface> input_ref;
-      if (!in.input_surface.faces.empty()) input_ref.emplace(std::move(in.input_surface));
+    std::sort(counts.begin(), counts.end(), std::greater<>());
+    if (const auto twice = std::adjacent_find(counts.begin(), counts.end()); twice != counts.end())
+      return refuse("two levels ask for " + std::to_string(*twice) + " quads");
+    std::vector<std::string> outputs;
+    for (Index count : counts) {
+      outputs.push_back(counts.size() == 1 ? a.output : level_path(a.output, count));
+      if (auto err = check_output_path(a.input, outputs.back()); !err.empty()) return refuse(err);
+      if (const std::string why = texture_clash(outputs.back(), in); !why.empty()) return refuse(why);
+    }
+    // Distances from the input as given, as `quadsimp stats` measures them, not from its
+    // remeshing. The quads' orientation is still judged against the remeshing: the normals
+    // a coarse CAD mesh interpolates across its sharp edges face away from its flat sides (a
+    // 33-sided cone at automatic halting: 38 of 2,388 quads "flipped" against its file, none
+    // against the remeshing).
+    std::optional<ReferenceSurface> input_ref;
+    if ((a.json || a.stats) && !in.input_surface.faces.empty()) input_ref.emplace(std::move(in.input_surface));
+    const auto level_done = [&](std::size_t level, const SimplifyReport& r) {
+      const std::string& output = outputs[level];
+      write_result(output, in, a.texture_size, log);
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::vector<Index> flawed;  // ids of the compacted quads: the written file's faces
+      const QuadQuality q = quad_quality(in.quads, &ref, &flawed);
+      flawed = noted_faces(flawed, r);
+      if (log)
+        for (const std::string& note : result_notes(r, q, r.target_faces))
+          log(outputs.size() > 1 ? output + ": " + note : note);
+      if (!a.json && !a.stats) {
+        print_summary(a.input, output, q, s, r);
+        return;
+      }
       const SurfaceDistance d = surface_distance(in.quads, input_ref ? *input_ref : ref, a.samples);
       if (a.json) {
-        std::string j = to_json(q, &d, &flawed);
-        const auto n = [](Index x) { return std::to_string(x); };
-        char share[32], seconds[32];
-        std::snprintf(share, sizeof share, "%.4f", r.blocked_share);
-        std::snprintf(seconds, sizeof seconds, "%.4f", s);
-        const std::string extra =
-            std::string(", \"seconds\": ") + seconds + ", \"threads\": " +
-            n(Index(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))) +
-            ", \"collapses\": " + n(r.collapses) +
-            ", \"border_collapses\": " + n(r.border_collapses) + ", \"border_insets\": " + n(r.border_insets) +
-            ", \"tips\": " + n(r.tips) + ", \"chord_collapses\": " + n(r.chord_collapses) +
-            ", \"rotations\": " + n(r.rotations) + ", \"crease_collapses\": " + n(r.crease_collapses) +
-            ", \"crease_vertices\": " + n(r.crease_vertices) + ", \"unfolds\": " + n(r.unfolds) +
-            ", \"converted_faces\": " + n(converted) + ", \"input_faces\": " + n(r.initial_faces) +
-            ", \"target_faces\": " + n(r.target_faces) + ", \"refused\": {\"topology\": " + n(r.refused_topology) +
-            ", \"valence\": " + n(r.refused_valence) + ", \"geometry\": " + n(r.refused_geometry) +
-            ", \"fitmap\": " + n(r.refused_fitmap) + ", \"reach\": " + n(r.refused_reach) +
-            "}, \"blocked_share\": " + share + ", \"predicted_faces\": " + n(Index(std::lround(r.predicted_faces))) +
-            "}";
-        j.pop_back();
-        std::printf("%s%s\n", j.c_str(), extra.c_str());
-        return kOk;
+        std::printf("%s\n", simplify_json(q, d, flawed, r, s, converted).c_str());
+      } else {
+        print_summary(a.input, output, q, s, r);
+        print_quality(q, &d);
       }
-      print_summary(a, q, s, r);
-      print_quality(q, &d);
-      return kOk;
-    }
-    print_summary(a, q, s, r);
+    };
+    simplify_levels(in, ref, params, counts, level_done, progress_bar(a.quiet));
     return kOk;
   } catch (const InvalidInput& e) {
     std::cerr << "quadsimp simplify: " << e.what() << "\n";

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "quadsimp/simplify/pipeline.h"
 #include "quadsimp/texture/texture_bake.h"
@@ -26,9 +27,18 @@ struct ConvertArgs {
 };
 int run_convert(const ConvertArgs& args);
 
+//! One value of --faces or --edge-length: the target of one level (the SimplifyParams fields).
+struct Target {
+  Index faces = 0;
+  double share = 0, edge = 0;
+};
+
 struct SimplifyArgs {
   std::string input, output;
   SimplifyParams params;  // the options bind to its fields, so the defaults are the pipeline's
+  // The levels' targets, in the order given (none with automatic halting). With more than one
+  // each level is written to OUT with its target count before the extension (out_2000.ply).
+  std::vector<Target> targets;
   RemeshArgs remesh;
   int texture_size = TextureBakeOptions().max_side;  // the quads' texture's largest side
   bool stats = false, json = false, quiet = false;

@@ -2,6 +2,7 @@
 #include <tbb/global_control.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "cli/commands.h"
 #include "quadsimp/util/parse_number.h"
@@ -72,19 +74,29 @@ CLI::Validator face_count_or_auto() {
       "");
 }
 
-// --faces: "N", or "P%" of the quads the input converts to. Returns "" or why `s` is
-// neither; sets the target in `p` when given one (the validator checks, the callback sets).
-std::string parse_face_target(const std::string& s, qs::SimplifyParams* p) {
-  if (!s.empty() && s.back() == '%') {
-    double percent = 0;
-    if (!qs::parse_number(std::string_view(s).substr(0, s.size() - 1), percent) || !(percent > 0 && percent <= 100))
-      return "'" + s + "' is not a share above 0% and at most 100%";
-    if (p) p->target_share = percent / 100;
-    return {};
+// --faces: "N", or "P%" of the quads the input converts to, or several such values
+// comma-separated (levels of detail). Returns "" or why `s` is not that; adds the targets to
+// `targets` when given one (the validator checks, the callback sets).
+std::string parse_face_targets(const std::string& s, std::vector<qs::cli::Target>* targets) {
+  for (std::size_t at = 0;;) {
+    const std::size_t comma = std::min(s.find(',', at), s.size());
+    const std::string one = s.substr(at, comma - at);
+    qs::cli::Target t;
+    if (!one.empty() && one.back() == '%') {
+      double percent = 0;
+      if (!qs::parse_number(std::string_view(one).substr(0, one.size() - 1), percent) ||
+          !(percent > 0 && percent <= 100))
+        return "'" + one + "' is not a share above 0% and at most 100%";
+      t.share = percent / 100;
+    } else if (std::string why = not_a_whole_number_from_one(one); !why.empty()) {
+      return why;
+    } else {
+      qs::parse_number(one, t.faces);
+    }
+    if (targets) targets->push_back(t);
+    if (comma == s.size()) return {};
+    at = comma + 1;
   }
-  if (std::string why = not_a_whole_number_from_one(s); !why.empty()) return why;
-  if (p) qs::parse_number(s, p->target_faces);
-  return {};
 }
 
 CLI::Validator number_above_zero() {
@@ -131,14 +143,20 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   s->add_option("OUT", simp.output, "output quad mesh (.ply, .obj or .off)")->required();
   auto* faces = s->add_option_function<std::string>(
-                     "-f,--faces", [&simp](const std::string& v) { parse_face_target(v, &simp.params); },
-                     "target number of quads, or a share of the input's quads (10%)")
-                    ->type_name("N|P%")
-                    ->check(CLI::Validator([](std::string& v) { return parse_face_target(v, nullptr); }, ""));
-  s->add_option("--edge-length", simp.params.target_edge,
-                "target: as many quads as quads of this edge length (in the input's units) take to cover the "
-                "input's surface, in place of --faces")
-      ->type_name("L")
+                     "-f,--faces", [&simp](const std::string& v) { parse_face_targets(v, &simp.targets); },
+                     "target number of quads, or a share of the input's quads (10%); several, comma-separated, "
+                     "for levels of detail in one run, each going on from the one before (OUT_N.ext for N quads)")
+                    ->type_name("N|P%[,...]")
+                    ->check(CLI::Validator([](std::string& v) { return parse_face_targets(v, nullptr); }, ""));
+  s->add_option_function<std::vector<double>>(
+       "--edge-length",
+       [&simp](const std::vector<double>& edges) {
+         for (double edge : edges) simp.targets.push_back({0, 0, edge});
+       },
+       "target: as many quads as quads of this edge length (in the input's units) take to cover the input's "
+       "surface, in place of --faces; several, comma-separated, for levels of detail as with --faces")
+      ->type_name("L[,...]")
+      ->delimiter(',')
       ->check(number_above_zero())
       ->excludes(faces);
   s->add_flag("--adaptive", simp.params.adaptive, "adaptive mode driven by fitmaps");

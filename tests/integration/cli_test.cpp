@@ -571,6 +571,71 @@ TEST_F(Cli, faces_from_an_edge_length) {
   EXPECT_FALSE(fs::exists(p("x.ply")));
 }
 
+// Several values of --faces (counts or shares) or --edge-length give levels of detail in one
+// run, most quads first, each in OUT with its count before the extension; a JSON line each.
+TEST_F(Cli, levels_of_detail_in_one_run) {
+  const TriMesh sphere = fixtures::tri_sphere(40, 48);
+  const std::string in = p("fine.ply");
+  write_tri_mesh_ply(in, sphere);
+  ASSERT_EQ(run("convert " + in + " " + p("c.ply") + " -q").code, 0);
+  const long quads = long(read_mesh(p("c.ply")).quads.size());
+  const long share = std::lround(0.1 * double(quads));
+  ASSERT_LT(share, 300);
+  fs::create_directories(p("lod"));
+  for (const std::string mode : {"", " --adaptive"}) {
+    const CliRun r = run("simplify " + in + " " + p("lod/s.obj") + " --faces 300,10%,600 --json --samples 1000" + mode);
+    ASSERT_EQ(r.code, 0) << r.out;
+    std::istringstream lines(r.out);
+    std::vector<std::string> json;
+    for (std::string line; std::getline(lines, line);)
+      if (line.rfind("{", 0) == 0) json.push_back(line);
+    ASSERT_EQ(json.size(), 3u) << r.out;
+    const std::vector<long> counts = {600, 300, share};
+    double seconds = 0;
+    for (std::size_t i = 0; i < counts.size(); ++i) {
+      SCOPED_TRACE(counts[i]);
+      EXPECT_EQ(json_number(json[i], "target_faces"), double(counts[i]));
+      EXPECT_EQ(json_number(json[i], "faces"), double(counts[i]));
+      EXPECT_EQ(json_number(json[i], "converted_faces"), double(quads));
+      // Each level's loop starts from the one before's quads.
+      EXPECT_EQ(json_number(json[i], "input_faces"), i == 0 ? json_number(json[0], "input_faces") : counts[i - 1]);
+      EXPECT_GE(json_number(json[i], "seconds"), seconds);
+      seconds = json_number(json[i], "seconds");
+      EXPECT_EQ(read_mesh(p("lod/s_" + std::to_string(counts[i]) + ".obj")).quads.size(), std::size_t(counts[i]));
+    }
+    EXPECT_FALSE(fs::exists(p("lod/s.obj")));
+  }
+  // Edge lengths the same way, the log giving each count.
+  const long fine = std::lround(surface_area(sphere) / (0.2 * 0.2)), coarse = std::lround(surface_area(sphere) / 0.16);
+  CliRun r = run("simplify " + in + " " + p("e.ply") + " --edge-length 0.4,0.2");
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const long n : {fine, coarse}) {
+    EXPECT_NE(r.out.find("a target of " + std::to_string(n) + " quads"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" -> " + p("e_" + std::to_string(n) + ".ply") + ": " + std::to_string(n) + " faces"),
+              std::string::npos)
+        << r.out;
+  }
+  EXPECT_LT(r.out.find("e_" + std::to_string(fine)), r.out.find("e_" + std::to_string(coarse))) << r.out;
+  // One level writes OUT itself, as before.
+  r = run("simplify " + in + " " + p("one.ply") + " --faces 300 -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(read_mesh(p("one.ply")).quads.size(), 300u);
+  EXPECT_FALSE(fs::exists(p("one_300.ply")));
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {" --faces 300,300", "two levels ask for 300 quads"},
+           {" --faces 10%,600," + std::to_string(share), "two levels ask for " + std::to_string(share) + " quads"},
+           {" --faces 300,", "--faces: '' is not a whole number from 1"},
+           {" --faces 300,0", "--faces: '0' is not a whole number from 1"},
+           {" --edge-length 0.2,0", "--edge-length: '0' is not a number above 0"},
+           {" --faces 300,200 --adaptive --auto-halt", "automatic halting, not both"}}) {
+    r = run("simplify " + in + " " + p("x.ply") + args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_NE(r.out.find(message), std::string::npos) << args << ": " << r.out;
+  }
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().rfind("x", 0), std::string::npos) << entry.path();
+}
+
 TEST_F(Cli, simplify_stats_and_fitmap) {
   const std::string out = p("s.ply");
   CliRun r = run("simplify " + input_ + " " + out + " --faces 60 --stats --samples 2000");

@@ -11,6 +11,7 @@
 #include <numeric>
 #include <random>
 #include <set>
+#include <string_view>
 #include <tuple>
 
 #include "fixtures/shapes.h"
@@ -23,6 +24,7 @@
 #include "quadsimp/mesh/quad_geometry.h"
 #include "quadsimp/metrics/metrics.h"
 #include "quadsimp/simplify/pipeline.h"
+#include "quadsimp/simplify/surface_fit.h"
 
 using namespace qs;
 using namespace qs::fixtures;
@@ -258,6 +260,71 @@ TEST(Pipeline, a_target_from_an_edge_length) {
   }
   p.target_edge = 0, p.target_faces = 7;  // without an edge length the count stands
   EXPECT_EQ(target_faces_of(p, 1000, 12.0), 7u);
+}
+
+// simplify_levels(): each level goes on from the quads of the one before, as simplify_input()
+// run again on them does, with the fitmaps computed once; a fitted level is a fitted copy,
+// the next level going on from the quads on the input; targets must decrease.
+TEST(Pipeline, levels_go_on_from_the_one_before) {
+  const TriMesh torus = tri_torus(80, 40);
+  const auto prepared = [&] { return prepare_input(MeshFile{torus.positions, torus.faces, {}}, "torus"); };
+  const auto corners = [](const QuadMesh& m) {
+    std::vector<Vec3> out;
+    for (Index f = 0; f < m.face_capacity(); ++f)
+      if (m.is_face_live(f))
+        for (const Vec3& x : m.positions_of(m.face_vertices(f))) out.push_back(x);
+    return out;
+  };
+  const std::vector<Index> targets = {600, 300, 150};
+  for (const bool adaptive : {false, true}) {
+    SCOPED_TRACE(adaptive ? "adaptive" : "uniform");
+    SimplifyParams params;
+    params.adaptive = adaptive;
+    params.target_faces = targets.front();
+    Input in = prepared();
+    const ReferenceSurface ref(in.reference);
+    std::vector<std::vector<Vec3>> levels;
+    int fitmap_stages = 0;
+    simplify_levels(
+        in, ref, params, targets,
+        [&](std::size_t level, const SimplifyReport& r) {
+          EXPECT_EQ(level, levels.size());
+          EXPECT_EQ(r.target_faces, targets[level]);
+          EXPECT_EQ(in.quads.n_faces(), targets[level]);
+          validate(in.quads);
+          levels.push_back(corners(in.quads));
+        },
+        [&](float fraction, std::string_view stage) {
+          fitmap_stages += stage == "fitmaps" && fraction == 1.0f;
+          return true;
+        });
+    ASSERT_EQ(levels.size(), targets.size());
+    EXPECT_EQ(fitmap_stages, adaptive ? 1 : 0);
+    Input again = prepared();
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      params.target_faces = targets[i];
+      simplify_input(again, ref, params);
+      EXPECT_EQ(corners(again.quads), levels[i]) << targets[i];
+    }
+  }
+  SimplifyParams params;
+  params.target_faces = 1;
+  params.fit_to_input = true;
+  Input in = prepared();
+  const ReferenceSurface ref(in.reference);
+  std::vector<std::vector<Vec3>> fitted;
+  simplify_levels(in, ref, params, {600, 300},
+                  [&](std::size_t, const SimplifyReport&) { fitted.push_back(corners(in.quads)); });
+  params.fit_to_input = false;
+  Input on_input = prepared();
+  simplify_levels(on_input, ref, params, {600, 300}, [&](std::size_t level, const SimplifyReport&) {
+    QuadMesh copy = on_input.quads;
+    fit_to_surface(copy, ref);
+    EXPECT_NE(corners(copy), corners(on_input.quads));
+    EXPECT_EQ(corners(copy), fitted[level]) << level;
+  });
+  for (const std::vector<Index>& bad : std::vector<std::vector<Index>>{{}, {300, 300}, {300, 600}, {300, 0}})
+    EXPECT_THROW(simplify_levels(in, ref, params, bad, {}), std::invalid_argument) << bad.size();
 }
 
 TEST(Simplify, torus_reaches_target) {

@@ -86,6 +86,19 @@ SimplifyOptions simplify_options(const SimplifyParams& p, const Fitmaps* fitmaps
 SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const SimplifyParams& p,
                               const ProgressFn& progress) {
   if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
+  SimplifyReport report;
+  simplify_levels(in, ref, p, {target_faces_of(p, in.quads.n_faces(), ref.area())},
+                  [&report](std::size_t, const SimplifyReport& r) { report = r; }, progress);
+  return report;
+}
+
+void simplify_levels(Input& in, const ReferenceSurface& ref, const SimplifyParams& p,
+                     const std::vector<Index>& targets, const LevelFn& level_done, const ProgressFn& progress) {
+  if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
+  if (targets.empty()) throw std::invalid_argument("no target to simplify to");
+  for (std::size_t i = 1; i < targets.size(); ++i)
+    if (!(targets[i] < targets[i - 1]) || targets[i] == 0)
+      throw std::invalid_argument("each level must ask for fewer quads than the one before");
   Fitmaps fitmaps;
   if (p.adaptive) {
     FitmapOptions fo;
@@ -96,15 +109,26 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
   SimplifyOptions opt = simplify_options(p, &fitmaps);
   const Creases creases(ref.mesh(), ref.adjacency(), p.crease_angle);
   opt.creases = &creases;
-  opt.target_faces = target_faces_of(p, in.quads.n_faces(), ref.area());
   opt.progress = progress;
-  SimplifyReport r = simplify(in.quads, ref, opt);
-  if (p.fit_to_input && !r.cancelled) {
-    SurfaceFitOptions fit;
-    fit.keep_border = p.preserve_boundary;
-    fit_to_surface(in.quads, ref, fit);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    opt.target_faces = targets[i];
+    const SimplifyReport r = simplify(in.quads, ref, opt);
+    const bool last = i + 1 == targets.size() || r.cancelled;
+    if (!p.fit_to_input || r.cancelled) {
+      if (level_done) level_done(i, r);
+    } else {
+      // The loop takes its vertices to lie on the input, so the next level goes on from the
+      // quads as they were before the fit.
+      QuadMesh on_input;
+      if (!last) on_input = in.quads;
+      SurfaceFitOptions fit;
+      fit.keep_border = p.preserve_boundary;
+      fit_to_surface(in.quads, ref, fit);
+      if (level_done) level_done(i, r);
+      if (!last) in.quads = std::move(on_input);
+    }
+    if (r.cancelled) return;
   }
-  return r;
 }
 
 std::string target_shortfall(const SimplifyReport& r, Index target_faces) {
