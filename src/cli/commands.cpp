@@ -31,6 +31,10 @@
 namespace qs::cli {
 namespace {
 
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
 LogFn stderr_log(bool quiet) {
   if (quiet) return {};
   return [](std::string_view m) { std::cerr << "note: " << m << "\n"; };
@@ -86,7 +90,7 @@ Retriangulate remesher(const RemeshArgs& r, double crease_angle, Index target_qu
       char line[160];
       std::snprintf(line, sizeof line, ": remeshed %u triangles into %u, edges of %.3g%% of the diagonal (%.2f s)",
                     report.input_triangles, report.triangles, 100 * report.edge_length / report.diagonal,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+                    seconds_since(t0));
       log(name + line);
     }
     return out;
@@ -146,8 +150,9 @@ void print_summary(const std::string& input, const std::string& output, const Qu
               q.faces, q.regular_percent, q.max_valence, seconds, operations_done(r).c_str());
 }
 
-// simplify --json: the result's quality and distance, and what the run did. `seconds` since
-// the run started; `converted` quads the input converted to.
+// simplify --json: the result's quality and distance, and what the run did. `seconds`: the
+// run's time through this level, the distance sampling of the levels before left out;
+// `converted`: the quads the input converted to.
 std::string simplify_json(const QuadQuality& q, const SurfaceDistance& d, const std::vector<Index>& flawed,
                           const SimplifyReport& r, double seconds, Index converted) {
   std::string j = to_json(q, &d, &flawed);
@@ -221,7 +226,7 @@ int run_convert(const ConvertArgs& a) {
       return kBadArguments;
     }
     write_result(a.output, in, a.texture_size, log);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double s = seconds_since(t0);
     if (in.was_pure_quad) {
       std::printf("%s: already pure quad, %u quads written to %s (%.2f s)\n", a.input.c_str(),
                   in.quads.n_faces(), a.output.c_str(), s);
@@ -298,10 +303,11 @@ int run_simplify(const SimplifyArgs& a) {
     // against the remeshing).
     std::optional<ReferenceSurface> input_ref;
     if ((a.json || a.stats) && !in.input_surface.faces.empty()) input_ref.emplace(std::move(in.input_surface));
+    double measuring = 0;  // the levels' distance sampling, left out of the run's time
     const auto level_done = [&](std::size_t level, const SimplifyReport& r) {
       const std::string& output = outputs[level];
       write_result(output, in, a.texture_size, log);
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double s = seconds_since(t0) - measuring;
       std::vector<Index> flawed;  // ids of the compacted quads: the written file's faces
       const QuadQuality q = quad_quality(in.quads, &ref, &flawed);
       flawed = noted_faces(flawed, r);
@@ -312,7 +318,9 @@ int run_simplify(const SimplifyArgs& a) {
         print_summary(a.input, output, q, s, r);
         return;
       }
+      const auto t1 = std::chrono::steady_clock::now();
       const SurfaceDistance d = surface_distance(in.quads, input_ref ? *input_ref : ref, a.samples);
+      measuring += seconds_since(t1);
       if (a.json) {
         std::printf("%s\n", simplify_json(q, d, flawed, r, s, converted).c_str());
       } else {
@@ -385,7 +393,7 @@ int run_fitmap(const FitmapArgs& a) {
       notes += summary;
     }
     write_tri_mesh_ply(a.output, tri, fields);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double s = seconds_since(t0);
     std::printf("%s: S and M fitmaps of %u vertices written to %s (per-vertex %s; colour = S%s), %.2f s\n",
                 a.input.c_str(), tri.n_vertices(), a.output.c_str(), names.c_str(), notes.c_str(), s);
     return kOk;
