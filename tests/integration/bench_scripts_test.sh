@@ -34,6 +34,7 @@ check() {  # script model rows [more options]: the rows the script must print fo
 check paper_table1 moai 3
 check paper_tables23 moai 7 --draws 1
 check fit_to_input moai 4
+check levels moai 5
 check fixed_counts gargoyle 4
 check fixed_counts armadillo 4 --both-args=--keep-tips
 check meshlab_quadric moai 15 --python "$python"
