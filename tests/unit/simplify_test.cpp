@@ -278,9 +278,8 @@ TEST(Pipeline, levels_go_on_from_the_one_before) {
   const std::vector<Index> targets = {600, 300, 150};
   for (const bool adaptive : {false, true}) {
     SCOPED_TRACE(adaptive ? "adaptive" : "uniform");
-    SimplifyParams params;
+    SimplifyParams params;  // no target of its own: the levels give theirs
     params.adaptive = adaptive;
-    params.target_faces = targets.front();
     Input in = prepared();
     const ReferenceSurface ref(in.reference);
     std::vector<std::vector<Vec3>> levels;
@@ -308,7 +307,6 @@ TEST(Pipeline, levels_go_on_from_the_one_before) {
     }
   }
   SimplifyParams params;
-  params.target_faces = 1;
   params.fit_to_input = true;
   Input in = prepared();
   const ReferenceSurface ref(in.reference);
@@ -323,8 +321,10 @@ TEST(Pipeline, levels_go_on_from_the_one_before) {
     EXPECT_NE(corners(copy), corners(on_input.quads));
     EXPECT_EQ(corners(copy), fitted[level]) << level;
   });
-  for (const std::vector<Index>& bad : std::vector<std::vector<Index>>{{}, {300, 300}, {300, 600}, {300, 0}})
+  for (const std::vector<Index>& bad : std::vector<std::vector<Index>>{{}, {300, 300}, {300, 600}, {300, 0}, {0}})
     EXPECT_THROW(simplify_levels(in, ref, params, bad, {}), std::invalid_argument) << bad.size();
+  params.adaptive = params.auto_halt = true;  // automatic halting is the one level of 0
+  EXPECT_THROW(simplify_levels(in, ref, params, {300}, {}), std::invalid_argument);
 }
 
 TEST(Simplify, torus_reaches_target) {

@@ -94,8 +94,10 @@ SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const Simp
 
 void simplify_levels(Input& in, const ReferenceSurface& ref, const SimplifyParams& p,
                      const std::vector<Index>& targets, const LevelFn& level_done, const ProgressFn& progress) {
-  if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
   if (targets.empty()) throw std::invalid_argument("no target to simplify to");
+  SimplifyParams first = p;  // checked with the first level's target in place of its own
+  first.target_faces = targets.front(), first.target_share = 0, first.target_edge = 0;
+  if (const std::string why = check_params(first); !why.empty()) throw std::invalid_argument(why);
   for (std::size_t i = 1; i < targets.size(); ++i)
     if (!(targets[i] < targets[i - 1]) || targets[i] == 0)
       throw std::invalid_argument("each level must ask for fewer quads than the one before");
