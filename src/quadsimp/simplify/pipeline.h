@@ -86,9 +86,9 @@ using LevelFn = std::function<void(std::size_t level, const SimplifyReport& repo
 //! params.fit_to_input each level's quads are fitted for `level_done` only: the next level
 //! goes on from them as they were, on the input. The levels are not separate runs' quads,
 //! but as close to the input: over the six datasets, levels of 2,000, 1,000 and 500 quads
-//! after 5,000 had an RMS distance 1.2% above separate runs' (median; -24 to +28%) in
-//! uniform mode, and levels of 1,000 and 500 after 2,000 3.0% below (-12 to +0.5%) in
-//! adaptive mode (bench/RESULTS.md, "Levels of detail in one run").
+//! after 5,000 had an RMS distance 1.4% above separate runs' (median; -24 to +29%) in
+//! uniform mode, and levels of 1,000 and 500 after 2,000 3.0% below (-12 to +0.6%) in
+//! adaptive mode (bench/levels.py; bench/RESULTS.md, "Levels of detail in one run").
 //! \throw std::invalid_argument for parameters check_params() refuses, or targets that do
 //! not decrease; Cancelled when `progress` says stop.
 void simplify_levels(Input& in, const ReferenceSurface& ref, const SimplifyParams& params,
