@@ -616,6 +616,10 @@ TEST_F(Cli, levels_of_detail_in_one_run) {
         << r.out;
   }
   EXPECT_LT(r.out.find("e_" + std::to_string(fine)), r.out.find("e_" + std::to_string(coarse))) << r.out;
+  // A level's notes name its file (a closed sphere cannot come down to 1 quad).
+  r = run("simplify " + in + " " + p("t.ply") + " --faces 300,1");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("note: " + p("t_1.ply") + ": stopped at "), std::string::npos) << r.out;
   // One level writes OUT itself, as before.
   r = run("simplify " + in + " " + p("one.ply") + " --faces 300 -q");
   ASSERT_EQ(r.code, 0) << r.out;
