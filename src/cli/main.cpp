@@ -156,6 +156,7 @@ int main(int argc, char** argv) {
        "target: as many quads as quads of this edge length (in the input's units) take to cover the input's "
        "surface, in place of --faces; several, comma-separated, for levels of detail as with --faces")
       ->type_name("L[,...]")
+      ->allow_extra_args(false)  // one word, split at its commas: a vector option would take IN and OUT too
       ->delimiter(',')
       ->check(number_above_zero())
       ->excludes(faces);

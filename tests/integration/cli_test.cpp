@@ -616,6 +616,10 @@ TEST_F(Cli, levels_of_detail_in_one_run) {
         << r.out;
   }
   EXPECT_LT(r.out.find("e_" + std::to_string(fine)), r.out.find("e_" + std::to_string(coarse))) << r.out;
+  // The option before IN and OUT takes one word (a list option would take them too).
+  r = run("simplify --edge-length 0.4 " + in + " " + p("before.ply") + " -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(read_mesh(p("before.ply")).quads.size(), std::size_t(coarse));
   // A level's notes name its file (a closed sphere cannot come down to 1 quad).
   r = run("simplify " + in + " " + p("t.ply") + " --faces 300,1");
   ASSERT_EQ(r.code, 0) << r.out;
