@@ -2,7 +2,6 @@
 #include <tbb/global_control.h>
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <iostream>
@@ -74,29 +73,23 @@ CLI::Validator face_count_or_auto() {
       "");
 }
 
-// --faces: "N", or "P%" of the quads the input converts to, or several such values
-// comma-separated (levels of detail). Returns "" or why `s` is not that; adds the targets to
-// `targets` when given one (the validator checks, the callback sets).
-std::string parse_face_targets(const std::string& s, std::vector<qs::cli::Target>* targets) {
-  for (std::size_t at = 0;;) {
-    const std::size_t comma = std::min(s.find(',', at), s.size());
-    const std::string one = s.substr(at, comma - at);
-    qs::cli::Target t;
-    if (!one.empty() && one.back() == '%') {
-      double percent = 0;
-      if (!qs::parse_number(std::string_view(one).substr(0, one.size() - 1), percent) ||
-          !(percent > 0 && percent <= 100))
-        return "'" + one + "' is not a share above 0% and at most 100%";
-      t.share = percent / 100;
-    } else if (std::string why = not_a_whole_number_from_one(one); !why.empty()) {
-      return why;
-    } else {
-      qs::parse_number(one, t.faces);
-    }
-    if (targets) targets->push_back(t);
-    if (comma == s.size()) return {};
-    at = comma + 1;
+// One value of --faces: "N", or "P%" of the quads the input converts to. Returns "" or why
+// `s` is neither; adds the target to `targets` when given one (the validator checks, the
+// callback sets).
+std::string parse_face_target(const std::string& s, std::vector<qs::cli::Target>* targets) {
+  qs::cli::Target t;
+  if (!s.empty() && s.back() == '%') {
+    double percent = 0;
+    if (!qs::parse_number(std::string_view(s).substr(0, s.size() - 1), percent) || !(percent > 0 && percent <= 100))
+      return "'" + s + "' is not a share above 0% and at most 100%";
+    t.share = percent / 100;
+  } else if (std::string why = not_a_whole_number_from_one(s); !why.empty()) {
+    return why;
+  } else {
+    qs::parse_number(s, t.faces);
   }
+  if (targets) targets->push_back(t);
+  return {};
 }
 
 CLI::Validator number_above_zero() {
@@ -142,12 +135,19 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   s->add_option("OUT", simp.output, "output quad mesh (.ply, .obj or .off)")->required();
-  auto* faces = s->add_option_function<std::string>(
-                     "-f,--faces", [&simp](const std::string& v) { parse_face_targets(v, &simp.targets); },
+  // The two targets' values: one word each time the option is given, split at its commas (a
+  // list option would take IN and OUT after it too).
+  auto* faces = s->add_option_function<std::vector<std::string>>(
+                     "-f,--faces",
+                     [&simp](const std::vector<std::string>& values) {
+                       for (const std::string& v : values) parse_face_target(v, &simp.targets);
+                     },
                      "target number of quads, or a share of the input's quads (10%); several, comma-separated, "
                      "for levels of detail in one run, each going on from the one before (OUT_N.ext for N quads)")
                     ->type_name("N|P%[,...]")
-                    ->check(CLI::Validator([](std::string& v) { return parse_face_targets(v, nullptr); }, ""));
+                    ->allow_extra_args(false)
+                    ->delimiter(',')
+                    ->check(CLI::Validator([](std::string& v) { return parse_face_target(v, nullptr); }, ""));
   s->add_option_function<std::vector<double>>(
        "--edge-length",
        [&simp](const std::vector<double>& edges) {
@@ -156,7 +156,7 @@ int main(int argc, char** argv) {
        "target: as many quads as quads of this edge length (in the input's units) take to cover the input's "
        "surface, in place of --faces; several, comma-separated, for levels of detail as with --faces")
       ->type_name("L[,...]")
-      ->allow_extra_args(false)  // one word, split at its commas: a vector option would take IN and OUT too
+      ->allow_extra_args(false)
       ->delimiter(',')
       ->check(number_above_zero())
       ->excludes(faces);

@@ -616,10 +616,14 @@ TEST_F(Cli, levels_of_detail_in_one_run) {
         << r.out;
   }
   EXPECT_LT(r.out.find("e_" + std::to_string(fine)), r.out.find("e_" + std::to_string(coarse))) << r.out;
-  // The option before IN and OUT takes one word (a list option would take them too).
+  // Either option before IN and OUT takes one word (a list option would take them too), and
+  // given twice adds levels.
   r = run("simplify --edge-length 0.4 " + in + " " + p("before.ply") + " -q");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_EQ(read_mesh(p("before.ply")).quads.size(), std::size_t(coarse));
+  r = run("simplify --faces 300 --faces 200 " + in + " " + p("twice.ply") + " -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(read_mesh(p("twice_200.ply")).quads.size(), 200u);
   // A level's notes name its file (a closed sphere cannot come down to 1 quad).
   r = run("simplify " + in + " " + p("t.ply") + " --faces 300,1");
   ASSERT_EQ(r.code, 0) << r.out;
@@ -632,7 +636,7 @@ TEST_F(Cli, levels_of_detail_in_one_run) {
   for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
            {" --faces 300,300", "two levels ask for 300 quads"},
            {" --faces 10%,600," + std::to_string(share), "two levels ask for " + std::to_string(share) + " quads"},
-           {" --faces 300,", "--faces: '' is not a whole number from 1"},
+           {" --faces ''", "--faces: '' is not a whole number from 1"},
            {" --faces 300,0", "--faces: '0' is not a whole number from 1"},
            {" --edge-length 0.2,0", "--edge-length: '0' is not a number above 0"},
            {" --faces 300,200 --adaptive --auto-halt", "automatic halting, not both"}}) {
