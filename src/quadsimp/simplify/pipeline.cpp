@@ -112,24 +112,21 @@ void simplify_levels(Input& in, const ReferenceSurface& ref, const SimplifyParam
   const Creases creases(ref.mesh(), ref.adjacency(), p.crease_angle);
   opt.creases = &creases;
   opt.progress = progress;
+  SurfaceFitOptions fit_options;
+  fit_options.keep_border = p.preserve_boundary;
   for (std::size_t i = 0; i < targets.size(); ++i) {
     opt.target_faces = targets[i];
     const SimplifyReport r = simplify(in.quads, ref, opt);
-    const bool last = i + 1 == targets.size() || r.cancelled;
-    if (!p.fit_to_input || r.cancelled) {
-      if (level_done) level_done(i, r);
-    } else {
-      // The loop takes its vertices to lie on the input, so the next level goes on from the
-      // quads as they were before the fit.
-      QuadMesh on_input;
-      if (!last) on_input = in.quads;
-      SurfaceFitOptions fit;
-      fit.keep_border = p.preserve_boundary;
-      fit_to_surface(in.quads, ref, fit);
-      if (level_done) level_done(i, r);
-      if (!last) in.quads = std::move(on_input);
-    }
+    const bool fit = p.fit_to_input && !r.cancelled;
+    // The loop takes its vertices to lie on the input, so a next level goes on from the quads
+    // as they were before the fit.
+    const bool keep = fit && i + 1 < targets.size();
+    QuadMesh on_input;
+    if (keep) on_input = in.quads;
+    if (fit) fit_to_surface(in.quads, ref, fit_options);
+    if (level_done) level_done(i, r);
     if (r.cancelled) return;
+    if (keep) in.quads = std::move(on_input);
   }
 }
 
