@@ -266,7 +266,7 @@ int run_simplify(const SimplifyArgs& a) {
   double finest = 0;
   for (const SimplifyParams& p : levels) {
     most = std::max(most, p.target_faces);
-    if (p.target_edge > 0 && !(finest > 0 && finest <= p.target_edge)) finest = p.target_edge;
+    if (p.target_edge > 0) finest = finest > 0 ? std::min(finest, p.target_edge) : p.target_edge;
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
