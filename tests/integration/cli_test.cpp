@@ -688,12 +688,9 @@ TEST_F(Cli, threads_cap_the_parallel_parts_and_change_no_output) {
   const std::string moai = fixtures::shared_dataset("moai");
   if (moai.empty()) GTEST_SKIP() << "../shared/datasets not found";
   const std::string args = " simplify " + moai + " --adaptive --auto-halt --json --samples 20000 -q ";
-  const std::vector<std::pair<std::string, std::string>> runs = {
-      {"-j 1" + args + p("one.ply"), "one.ply"},
-      {args + p("two.ply") + " --threads 2", "two.ply"},
-      {args + p("all.ply"), "all.ply"}};
   std::vector<std::string> json;
-  for (const auto& [command, out] : runs) {
+  for (const std::string& command :
+       {"-j 1" + args + p("one.ply"), args + p("two.ply") + " --threads 2", args + p("all.ply")}) {
     const CliRun r = run(command);
     ASSERT_EQ(r.code, 0) << command << ": " << r.out;
     json.push_back(r.out);
