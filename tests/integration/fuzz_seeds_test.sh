@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The fuzzers' seed corpus (tests/fuzz/make_seeds.py) holds the meshes it says: every
+# seed, its header bytes taken off, loads in the format its first byte picks, as
+# the shape it is (a sphere of 140 triangles, a 3x3 grid and a cube of quads), so that
+# scripts/fuzz.sh starts from files the readers take rather than from noise.
+# Usage: fuzz_seeds_test.sh REPO_DIR QUADSIMP_CLI
+set -euo pipefail
+repo=$1 cli=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+python3 "$repo/tests/fuzz/make_seeds.py" "$work/seeds" >/dev/null
+extensions=(ply obj off stl)
+count=0
+for target_header in read_mesh_fuzzer:1 simplify_fuzzer:2; do
+  target=${target_header%:*} header=${target_header#*:}
+  for seed in "$work/seeds/$target"/*; do
+    format=$(head -c 1 "$seed" | od -An -tu1 | tr -d ' ')
+    file="$work/mesh.${extensions[$((format % 4))]}"
+    tail -c +$((header + 1)) "$seed" > "$file"
+    log=$("$cli" convert "$file" "$work/quads.obj" 2>&1) || { echo "FAIL: $target/$(basename "$seed"): $log"; exit 1; }
+    case $(basename "$seed") in
+      sphere*) expect="140 triangles -> 70 quads" ;;
+      grid*) expect="already pure quad, 9 quads" ;;
+      cube*) expect="already pure quad, 6 quads" ;;
+    esac
+    # An STL file holds triangles only: its quads come back paired.
+    [[ $file == *.stl && $expect == already* ]] && expect="-> ${expect#already pure quad, }"
+    grep -qF -- "$expect" <<<"$log" || { echo "FAIL: $target/$(basename "$seed"): '$log' lacks '$expect'"; exit 1; }
+    count=$((count + 1))
+  done
+done
+[ "$count" = $((21 + 63)) ] || { echo "FAIL: $count seeds, expected 84"; exit 1; }
+echo "fuzz seeds: $count load as their shapes"
