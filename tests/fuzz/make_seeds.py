@@ -4,7 +4,8 @@
 Each file starts with the byte that picks its format (fuzz_input.h: PLY, OBJ, OFF or STL
 by its low two bits); the simplify fuzzer's seeds have a second byte, and both bytes pick
 its mode, target and options (simplify_fuzzer.cpp), so the seeds vary them.
-Usage: make_seeds.py FOLDER (it writes FOLDER/read_mesh_fuzzer and FOLDER/simplify_fuzzer)
+Usage: make_seeds.py FOLDER (it writes FOLDER/read_mesh_fuzzer/FORMAT, a folder per format,
+and FOLDER/simplify_fuzzer)
 """
 import math
 import os
@@ -12,6 +13,7 @@ import struct
 import sys
 
 PLY, OBJ, OFF, STL = range(4)
+EXTENSIONS = ("ply", "obj", "off", "stl")
 
 
 def sphere(rings=4, segments=6):
@@ -91,8 +93,9 @@ def stl_binary(v, f):
 
 
 def main(folder):
-    for target in ("read_mesh_fuzzer", "simplify_fuzzer"):
-        os.makedirs(os.path.join(folder, target), exist_ok=True)
+    for sub in ("read_mesh_fuzzer/ply", "read_mesh_fuzzer/obj", "read_mesh_fuzzer/off", "read_mesh_fuzzer/stl",
+                "simplify_fuzzer"):
+        os.makedirs(os.path.join(folder, sub), exist_ok=True)
     shapes = {"sphere": sphere(8, 10), "grid": grid(), "cube": cube()}
     n = 0
     for name, (v, f) in shapes.items():
@@ -100,7 +103,7 @@ def main(folder):
                  (OBJ, obj(v, f)), (OFF, off(v, f)), (STL, stl_ascii(v, f)), (STL, stl_binary(v, f))]
         for fmt, body in files:
             data = body if isinstance(body, bytes) else body.encode()
-            with open(os.path.join(folder, "read_mesh_fuzzer", f"{name}_{n:03d}"), "wb") as out:
+            with open(os.path.join(folder, "read_mesh_fuzzer", EXTENSIONS[fmt], f"{name}_{n:03d}"), "wb") as out:
                 out.write(bytes([fmt]) + data)
             # The simplify fuzzer's mode byte: uniform to a quarter, adaptive to half, adaptive
             # with automatic halting; its options byte: none, a kept border with creases, fast
@@ -109,7 +112,7 @@ def main(folder):
                 with open(os.path.join(folder, "simplify_fuzzer", f"{name}_{n:03d}_{mode:02x}"), "wb") as out:
                     out.write(bytes([fmt | mode, options]) + data)
             n += 1
-    print(f"{n} meshes in {folder}/read_mesh_fuzzer and, with options, in {folder}/simplify_fuzzer")
+    print(f"{n} meshes in {folder}/read_mesh_fuzzer/FORMAT and, with options, in {folder}/simplify_fuzzer")
 
 
 if __name__ == "__main__":

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The fuzzers' seed corpus (tests/fuzz/make_seeds.py) holds the meshes it says: every
-# seed, its header bytes taken off, loads in the format its first byte picks, as
-# the shape it is (a sphere of 140 triangles, a 3x3 grid and a cube of quads), so that
-# scripts/fuzz.sh starts from files the readers take rather than from noise.
+# seed, its header bytes taken off, loads in the format its first byte picks (the
+# readers' seeds are in that format's folder), as the shape it is (a sphere of 140
+# triangles, a 3x3 grid and a cube of quads), so that scripts/fuzz.sh starts from files
+# the readers take rather than from noise.
 # Usage: fuzz_seeds_test.sh REPO_DIR QUADSIMP_CLI
 set -euo pipefail
 repo=$1 cli=$2
@@ -13,9 +14,12 @@ extensions=(ply obj off stl)
 count=0
 for target_header in read_mesh_fuzzer:1 simplify_fuzzer:2; do
   target=${target_header%:*} header=${target_header#*:}
-  for seed in "$work/seeds/$target"/*; do
+  for seed in $(find "$work/seeds/$target" -type f | sort); do
     format=$(head -c 1 "$seed" | od -An -tu1 | tr -d ' ')
     file="$work/mesh.${extensions[$((format % 4))]}"
+    # The readers' seeds are in a folder per format, for a campaign per reader.
+    [ "$target" = simplify_fuzzer ] || [ "$(basename "$(dirname "$seed")")" = "${extensions[$((format % 4))]}" ] \
+      || { echo "FAIL: $seed is not in its format's folder"; exit 1; }
     tail -c +$((header + 1)) "$seed" > "$file"
     log=$("$cli" convert "$file" "$work/quads.obj" 2>&1) || { echo "FAIL: $target/$(basename "$seed"): $log"; exit 1; }
     case $(basename "$seed") in
