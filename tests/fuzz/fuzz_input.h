@@ -8,6 +8,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -22,6 +24,13 @@ inline std::string write_input(const std::uint8_t* data, std::size_t size, std::
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (size > header) out.write(reinterpret_cast<const char*>(data + header), std::streamsize(size - header));
   return path;
+}
+
+//! A finding when `ok` is false: a promise of the code under test (`what`) was broken.
+inline void require(bool ok, const char* what) {
+  if (ok) return;
+  std::fprintf(stderr, "broken promise: %s\n", what);
+  std::abort();
 }
 
 }  // namespace qs::fuzz

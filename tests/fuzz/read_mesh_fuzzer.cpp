@@ -4,8 +4,6 @@
 // element or not at all), since the cleaning trusts it. Anything else (a crash, a
 // sanitizer report, another exception, a hang or a huge allocation, which libFuzzer's
 // -timeout and -malloc_limit_mb catch) is a bug. scripts/fuzz.sh runs it.
-#include <cstdio>
-#include <cstdlib>
 
 #include "fuzz_input.h"
 #include "quadsimp/io/mesh_io.h"
@@ -13,11 +11,7 @@
 
 namespace {
 
-void require(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "read_mesh() broke its word: %s\n", what);
-  std::abort();
-}
+using qs::fuzz::require;
 
 template <class Faces>
 bool corners_name_vertices(const Faces& faces, std::size_t n) {
@@ -33,8 +27,8 @@ void check(const qs::MeshFile& file) {
   require(corners_name_vertices(file.triangles, n) && corners_name_vertices(file.quads, n),
           "a face corner names no vertex");
   require(file.colours.empty() || file.colours.size() == n, "vertex colours not one per vertex");
-  require(!file.has_face_colours() || (file.triangle_colours.size() == file.triangles.size() &&
-                                       file.quad_colours.size() == file.quads.size()),
+  require(!file.has_face_colours() ||
+              (file.triangle_colours.size() == file.triangles.size() && file.quad_colours.size() == file.quads.size()),
           "face colours not one per face");
   const qs::FileTexture& t = file.texture;
   require(t.coords.size() == t.triangles.size() && t.image.size() == t.triangles.size(),

@@ -1,14 +1,36 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target: a small mesh file is loaded (cleaned, converted) and simplified with
-// options its first two bytes choose, and the result must pass validate(). Refusing the
-// file (InvalidInput) is fine; any other exception, a TopologyError above all, a crash, a
-// sanitizer report or a hang is a bug. The meshes are small (odd geometry, not size, is
-// what breaks operators), so each input takes milliseconds.
+// options its first two bytes choose, and measured as the CLI measures it: the result must
+// pass validate(), its vertices and distances be finite, its report say its count, and a
+// second run give the same quads. Refusing the file (InvalidInput) is fine; any other
+// exception, a TopologyError above all, a crash, a sanitizer report or a hang is a bug.
+// The meshes are small (odd geometry, not size, is what breaks operators), so each input
+// takes milliseconds.
+#include <cmath>
+
 #include "fuzz_input.h"
 #include "quadsimp/io/load_input.h"
+#include "quadsimp/metrics/metrics.h"
 #include "quadsimp/reference/reference_surface.h"
 #include "quadsimp/simplify/pipeline.h"
 #include "quadsimp/util/errors.h"
+
+namespace {
+
+using qs::fuzz::require;
+
+bool same_quads(const qs::QuadMesh& a, const qs::QuadMesh& b) {
+  if (a.vertex_capacity() != b.vertex_capacity() || a.face_capacity() != b.face_capacity()) return false;
+  for (qs::Index v = 0; v < a.vertex_capacity(); ++v)
+    if (a.is_vertex_live(v) != b.is_vertex_live(v) || (a.is_vertex_live(v) && a.position(v) != b.position(v)))
+      return false;
+  for (qs::Index f = 0; f < a.face_capacity(); ++f)
+    if (a.is_face_live(f) != b.is_face_live(f) || (a.is_face_live(f) && a.face_vertices(f) != b.face_vertices(f)))
+      return false;
+  return true;
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 3) return 0;
@@ -33,8 +55,25 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   if (in.quads.n_faces() > 2000) return 0;
   if (!params.auto_halt) params.target_faces = 1 + (mode >> 4) * in.quads.n_faces() / 16;
+  // Every eighth input (by size) is simplified twice: the same quads, bit for bit, though
+  // the fitmaps and the distances run on TBB's threads.
+  const bool twice = size % 8 == 0;
+  qs::Input again = twice ? in : qs::Input{};
   const qs::ReferenceSurface ref(std::move(in.reference));
-  qs::simplify_input(in, ref, params);
+  const qs::SimplifyReport report = qs::simplify_input(in, ref, params);
   qs::validate(in.quads);
+  if (twice) {
+    qs::simplify_input(again, ref, params);
+    require(same_quads(in.quads, again.quads), "two runs on one input gave different quads");
+  }
+  // What the CLI does with the result: its measures and the log's notes.
+  require(report.faces == in.quads.n_faces(), "the report's face count is not the mesh's");
+  for (qs::Index v = 0; v < in.quads.vertex_capacity(); ++v)
+    require(!in.quads.is_vertex_live(v) || in.quads.position(v).allFinite(), "a vertex is not finite");
+  const qs::QuadQuality quality = qs::quad_quality(in.quads, &ref);
+  const qs::SurfaceDistance d = qs::surface_distance(in.quads, ref, 1000);
+  require(std::isfinite(d.hausdorff) && std::isfinite(d.rms) && d.projectability >= 0 && d.projectability <= 1,
+          "a distance is not finite, or projectability is not a share");
+  qs::result_notes(report, quality, params.target_faces);
   return 0;
 }
