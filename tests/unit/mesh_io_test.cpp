@@ -795,6 +795,29 @@ TEST_F(MeshIo, obj_continued_lines_and_lines_of_no_statement) {
       << notes[0];
 }
 
+// A refused file leaves no file open: vcglib's STL reader returned from a file too short
+// for its label and count, or a facet with a vertex line cut short, without closing it
+// (scripts/patches/vcglib-stl-unclosed-files.patch), so that a host reading many damaged
+// files ran out of descriptors (scripts/fuzz.sh found it). Every reader is checked.
+TEST_F(MeshIo, refused_files_leave_no_file_open) {
+  const auto open_files = [] {
+    return std::distance(fs::directory_iterator("/proc/self/fd"), fs::directory_iterator{});
+  };
+  const std::pair<std::string, std::string> refused[] = {
+      {"short.stl", "solid"},
+      {"cut.stl", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n"},
+      {"cut.ply", ply_header(3, 1) + "0 0 0\n1 0 0\n"},
+      {"bad.obj", "v 0 0 0\nv 1 0 x\nv 0 1 0\nf 1 2 3\n"},
+      {"bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n"},
+  };
+  const auto before = open_files();
+  for (const auto& [name, text] : refused) {
+    const std::string file = write(name, text);
+    for (int k = 0; k < 20; ++k) EXPECT_THROW(read_mesh(file), InvalidInput) << name;
+    EXPECT_EQ(open_files(), before) << name;
+  }
+}
+
 // vcglib reads an STL as binary where its size is its facet count's, or where its first
 // bytes of facets hold one over 127 (a size a little off); else as ASCII, whose reader
 // never returned on a file without a line break. Such files are refused; binary ones
