@@ -4,12 +4,13 @@
 # build-fuzz/ with clang, writes a seed corpus of small files in every format, and runs
 # five campaigns of SECONDS each (default 300) on all cores: one per reader (PLY, OBJ,
 # OFF, STL: in one campaign for all four, the small readers' files were too few of the
-# corpus to be mutated much), then the whole run. Inputs
-# that crash, hang (over 20 s), allocate over 2 GB, break read_mesh()'s word or throw
-# anything but a refusal go to build-fuzz/findings/CAMPAIGN/; replay one with
-# `build-fuzz/tests/fuzz/TARGET FILE`. The corpora grow in build-fuzz/corpus/CAMPAIGN/ and
-# a later run goes on from them; the fuzzers' logs are in build-fuzz/logs/CAMPAIGN/. Needs scripts/setup.sh's packages, and Debian's clang
-# (libFuzzer), which it installs when missing.
+# corpus to be mutated much), then the whole run. Inputs that crash, hang (over 20 s),
+# allocate over 2 GB, break a promise (fuzz_input.h's require()) or throw anything but a
+# refusal go to build-fuzz/findings/CAMPAIGN/, and a fuzzer that stops before its time is
+# reported with its log's end; replay a finding with `build-fuzz/tests/fuzz/TARGET FILE`.
+# The corpora grow in build-fuzz/corpus/CAMPAIGN/ and a later run goes on from them; the
+# fuzzers' logs are in build-fuzz/logs/CAMPAIGN/. Needs scripts/setup.sh's packages, and
+# Debian's clang (libFuzzer), which it installs when missing.
 #
 #   scripts/fuzz.sh [SECONDS] [CAMPAIGN...]    CAMPAIGN: ply obj off stl simplify
 set -euo pipefail
@@ -52,7 +53,12 @@ for c in "${campaigns[@]}"; do
     -max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 -malloc_limit_mb=2048 -max_len="$max_len" \
     -dict="$here/tests/fuzz/mesh.dict" -use_value_profile=1 -artifact_prefix="$build/findings/$c/" \
     >/dev/null 2>&1) || true
-  for log in "$build/logs/$c"/fuzz-*.log; do grep -E '^#[0-9]+' "$log" | tail -1; done
+  for log in "$build/logs/$c"/fuzz-*.log; do
+    grep -E '^#[0-9]+' "$log" | tail -1
+    # A fuzzer that did not run its time out met something: a finding, or a failure of
+    # its own that wrote none ("Too many open files" was vcglib's STL reader leaking them).
+    grep -qE '^#[0-9]+[[:space:]]+DONE' "$log" || { echo "fuzz: $log ended early:"; tail -5 "$log"; status=1; }
+  done
   found=$(find "$build/findings/$c" -type f | wc -l)
   echo "fuzz: $c: $found finding(s) in $build/findings/$c"
   [ "$found" = 0 ] || status=1
