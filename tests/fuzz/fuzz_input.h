@@ -1,7 +1,7 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 // What the fuzzers share: the fuzzed bytes written to a mesh file. The readers take a
 // path (vcglib's STL importer only reads files), so each input goes through a file in
-// /dev/shm, named per process so that libFuzzer's -fork workers do not collide.
+// /dev/shm, named per process so that fuzzers running side by side do not collide.
 #pragma once
 
 #include <unistd.h>
