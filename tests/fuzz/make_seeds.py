@@ -93,8 +93,7 @@ def stl_binary(v, f):
 
 
 def main(folder):
-    for sub in ("read_mesh_fuzzer/ply", "read_mesh_fuzzer/obj", "read_mesh_fuzzer/off", "read_mesh_fuzzer/stl",
-                "simplify_fuzzer"):
+    for sub in [f"read_mesh_fuzzer/{ext}" for ext in EXTENSIONS] + ["simplify_fuzzer"]:
         os.makedirs(os.path.join(folder, sub), exist_ok=True)
     shapes = {"sphere": sphere(8, 10), "grid": grid(), "cube": cube()}
     n = 0
