@@ -42,6 +42,7 @@ for c in "${campaigns[@]}"; do
     *) echo "fuzz: unknown campaign '$c' (ply, obj, off, stl or simplify)" >&2; exit 2 ;;
   esac
   mkdir -p "$build/corpus/$c" "$build/findings/$c" "$build/logs/$c"
+  rm -f "$build/logs/$c"/fuzz-*.log  # an earlier run's, on more cores, would be read as this one's
   echo "fuzz: $c ($target) for $seconds s"
   # One fuzzer per core sharing the corpus (each stops at its first finding). Not -fork:
   # its short jobs lost the comparisons' guidance (-use_value_profile) that leads to the
