@@ -16,7 +16,7 @@ command -v apt-get >/dev/null || die "this script needs Debian's apt-get (Debian
 
 packages=(
   build-essential cmake pkg-config ninja-build
-  libembree-dev libeigen3-dev libtbb-dev libcli11-dev libboost-graph-dev libstb-dev
+  libembree-dev libeigen3-dev libtbb-dev libcli11-dev libboost-graph-dev libstb-dev libpng-dev libturbojpeg0-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev qtscript5-dev libglew-dev
   meshlab xvfb xauth glmark2-data

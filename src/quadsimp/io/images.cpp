@@ -1,17 +1,38 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include "quadsimp/io/images.h"
 
+#include <png.h>
+#include <turbojpeg.h>
+
 #include <algorithm>
+#include <cctype>
+#include <csetjmp>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
 #include <memory>
 #include <system_error>
 
 #include "quadsimp/util/errors.h"
 
-// stb's single-file libraries (Debian's libstb-dev), compiled here, their functions kept
-// to this file. USERMSG: stb's failure reasons read "Corrupt PNG", not "outofdata".
+// PNG and JPEG, nearly every texture, are decoded by libpng and libjpeg-turbo, which
+// Debian keeps patched. stb's single-file decoders (Debian's libstb-dev, a 2022 snapshot)
+// read only BMP and TGA here: fuzzing found its JPEG decoder writing past a Huffman table,
+// and its PNM reader reading 16-bit files past their texels (scripts/fuzz.sh image).
+// Its allocations are zeroed, so that texels a file is too short for hold no heap bytes
+// of ours. stb's writer still writes our PNGs. USERMSG: failure reasons read "Corrupt BMP".
+#define STBI_MALLOC(size) std::calloc(1, size)
+#define STBI_REALLOC(p, size) std::realloc(p, size)
+#define STBI_FREE(p) std::free(p)
 #define STB_IMAGE_STATIC
 #define STBI_FAILURE_USERMSG
+#define STBI_NO_STDIO
+#define STBI_ONLY_BMP
+#define STBI_ONLY_TGA
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
 #define STB_IMAGE_WRITE_STATIC
@@ -19,17 +40,222 @@
 #include <stb/stb_image_write.h>
 
 namespace qs {
+namespace {
 
-Image read_image(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) fail_file(path, "no such image file");
+bool starts_with(const std::vector<std::uint8_t>& bytes, const char* magic, std::size_t n) {
+  return bytes.size() >= n && std::memcmp(bytes.data(), magic, n) == 0;
+}
+
+// An image of w x h texels, or why not: checked from the header, before the texels are
+// allocated, since a few bytes of header can ask for gigabytes.
+std::string size_refused(std::size_t w, std::size_t h) {
+  if (w == 0 || h == 0) return "an image of no texels";
+  if (w * h <= kMaxImageTexels) return {};
+  return "an image of " + std::to_string(w) + " x " + std::to_string(h) + " texels, more than the " +
+         std::to_string(kMaxImageTexels) + " (16,384 squared) read";
+}
+
+// A header asking for more texels than the file's data can hold, however packed.
+std::string too_short(std::size_t w, std::size_t h) {
+  return "its data too short for its " + std::to_string(w) + " x " + std::to_string(h) + " texels";
+}
+
+// A w x h image of black texels to decode into, if size_refused() allows it.
+Image sized(const std::string& path, std::size_t w, std::size_t h) {
+  if (const std::string why = size_refused(w, h); !why.empty()) fail_file(path, why);
+  Image im;
+  im.width = int(w), im.height = int(h);
+  im.rgba.resize(w * h * 4);
+  return im;
+}
+
+// libpng's errors do not return: the handler keeps the message and jumps back to
+// decode_png()'s setjmp.
+struct PngSource {
+  const std::uint8_t* data;
+  std::size_t size, at;
+  char error[200];
+};
+
+[[noreturn]] void on_png_error(png_structp png, png_const_charp message) {
+  std::snprintf(static_cast<PngSource*>(png_get_error_ptr(png))->error, sizeof(PngSource::error), "%s", message);
+  png_longjmp(png, 1);
+}
+
+// A warning (a damaged ancillary chunk, a gamma out of range) leaves the texels readable.
+void on_png_warning(png_structp, png_const_charp) {}
+
+void read_png_bytes(png_structp png, png_bytep out, std::size_t n) {
+  auto* source = static_cast<PngSource*>(png_get_io_ptr(png));
+  if (n > source->size - source->at) png_error(png, "file cut short");
+  std::memcpy(out, source->data + source->at, n);
+  source->at += n;
+}
+
+// Why a PNG's header is refused, from its size alone: too many texels, or more rows
+// (filter bytes included) than a file of `size` bytes holds, since deflate packs at most
+// 1,032 bytes into one: a header of a few bytes asking for a gigabyte is cut short.
+std::string png_size_refused(png_structp png, png_infop info, std::size_t size) {
+  const std::size_t w = png_get_image_width(png, info), h = png_get_image_height(png, info);
+  if (std::string why = size_refused(w, h); !why.empty()) return why;
+  const std::size_t row_bits = w * png_get_channels(png, info) * png_get_bit_depth(png, info);
+  if (h * (1 + (row_bits + 7) / 8) <= 1032 * size + 1024) return {};
+  return too_short(w, h);
+}
+
+// Every libpng call that can fail is made in here, whose frame holds no C++ object, so
+// that an error's longjmp skips no destructor. False with the reason in source's error.
+bool decode_png(png_structp png, png_infop info, PngSource* source, Image* im, std::vector<png_bytep>* rows) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_read_info(png, info);
+  const std::size_t w = png_get_image_width(png, info), h = png_get_image_height(png, info);
+  if (const std::string why = png_size_refused(png, info, source->size); !why.empty()) {
+    std::snprintf(source->error, sizeof(source->error), "%s", why.c_str());
+    return false;  // `why` is gone before any later libpng call could jump
+  }
+  // The texels as stored, as MeshLab (Qt) reads them: no gamma or colour-space
+  // conversion; 16-bit samples keep their high byte.
+  png_set_expand(png);  // palettes and grey under 8 bits to 8 bits, tRNS to alpha
+  png_set_strip_16(png);
+  png_set_gray_to_rgb(png);
+  png_set_add_alpha(png, 0xff, PNG_FILLER_AFTER);
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  if (png_get_rowbytes(png, info) != w * 4) png_error(png, "unexpected row size after the conversion to RGBA");
+  im->width = int(w), im->height = int(h);
+  im->rgba.resize(w * h * 4);
+  rows->resize(h);
+  for (std::size_t y = 0; y < h; ++y) (*rows)[y] = im->rgba.data() + y * w * 4;
+  png_read_image(png, rows->data());
+  return true;  // what follows the texels (png_read_end) is not needed
+}
+
+struct PngReader {
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+  ~PngReader() {
+    if (png) png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
+  }
+};
+
+Image read_png(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  PngSource source{bytes.data(), bytes.size(), 0, "out of memory"};
+  PngReader r;
+  r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &source, on_png_error, on_png_warning);
+  if (r.png) r.info = png_create_info_struct(r.png);
+  if (!r.info) fail_file(path, "cannot be read as a PNG image (out of memory)");
+  png_set_read_fn(r.png, &source, read_png_bytes);
+  Image im;
+  std::vector<png_bytep> rows;
+  if (!decode_png(r.png, r.info, &source, &im, &rows))
+    fail_file(path, std::string("cannot be read as a PNG image (") + source.error + ")");
+  return im;
+}
+
+Image read_jpeg(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  const std::unique_ptr<void, int (*)(tjhandle)> tj(tjInitDecompress(), tjDestroy);
+  if (!tj) fail_file(path, "cannot be read as a JPEG image (libjpeg-turbo could not start)");
+  const auto failed = [&] {
+    fail_file(path, std::string("cannot be read as a JPEG image (") + tjGetErrorStr2(tj.get()) + ")");
+  };
+  int w = 0, h = 0, subsampling = 0, colour_space = 0;
+  if (tjDecompressHeader3(tj.get(), bytes.data(), bytes.size(), &w, &h, &subsampling, &colour_space) != 0) failed();
+  if (w <= 0 || h <= 0) fail_file(path, "cannot be read as a JPEG image (its header cut short)");
+  Image im = sized(path, std::size_t(w), std::size_t(h));
+  // A warning (data cut short, an extra byte) leaves what was decoded, as MeshLab shows
+  // it; a progressive file of over 500 scans, which takes minutes to decode, is refused.
+  if (tjDecompress2(tj.get(), bytes.data(), bytes.size(), im.rgba.data(), w, 0, h, TJPF_RGBA, TJFLAG_LIMITSCANS) != 0 &&
+      tjGetErrorCode(tj.get()) != TJERR_WARNING)
+    failed();
+  return im;
+}
+
+// What the file's first bytes say it is, for the message about a format not read.
+const char* format_not_read(const std::vector<std::uint8_t>& bytes) {
+  if (starts_with(bytes, "GIF8", 4)) return "GIF";
+  if (starts_with(bytes, "8BPS", 4)) return "PSD";
+  if (starts_with(bytes, "#?RADIANCE", 10) || starts_with(bytes, "#?RGBE", 6)) return "Radiance HDR";
+  if (starts_with(bytes, "II*\0", 4) || starts_with(bytes, "MM\0*", 4)) return "TIFF";
+  if (starts_with(bytes, "RIFF", 4) && bytes.size() >= 12 && std::memcmp(bytes.data() + 8, "WEBP", 4) == 0)
+    return "WebP";
+  return nullptr;
+}
+
+// Binary PNM (P5 grey, P6 RGB) is read here: stb's reader overflowed on long numbers in
+// its header, read 16-bit files past their texels, and left files cut short black.
+// Samples are scaled from the file's largest value to 255, as Qt (MeshLab) reads them.
+Image read_pnm(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  const auto refused = [&](const char* why) {
+    fail_file(path, std::string("cannot be read as a PNM image (") + why + ")");
+  };
+  std::size_t at = 2, field[3] = {0, 0, 0};  // width, height, largest value
+  for (std::size_t& value : field) {
+    while (at < bytes.size() && (std::isspace(bytes[at]) || bytes[at] == '#'))
+      if (bytes[at++] == '#')
+        while (at < bytes.size() && bytes[at] != '\n' && bytes[at] != '\r') ++at;
+    const std::size_t start = at;
+    while (at < bytes.size() && std::isdigit(bytes[at]) && at - start < 9) value = value * 10 + (bytes[at++] - '0');
+    if (at == start || (at < bytes.size() && std::isdigit(bytes[at])))
+      refused("a header of no width, height or largest value");
+  }
+  if (at >= bytes.size() || !std::isspace(bytes[at++])) refused("cut short");
+  const std::size_t w = field[0], h = field[1], largest = field[2];
+  if (largest == 0 || largest > 65535) refused("a largest value not from 1 to 65535");
+  if (const std::string why = size_refused(w, h); !why.empty()) fail_file(path, why);
+  const std::size_t channels = bytes[1] == '6' ? 3 : 1, sample = largest > 255 ? 2 : 1;  // 16 bits: big-endian
+  if (bytes.size() - at < w * h * channels * sample) refused("cut short");
+  Image im = sized(path, w, h);
+  for (std::size_t i = 0; i < w * h; ++i) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      const std::uint8_t* s = &bytes[at + (i * channels + (channels == 3 ? c : 0)) * sample];
+      const std::size_t v = std::min<std::size_t>(sample == 2 ? s[0] << 8 | s[1] : s[0], largest);
+      im.rgba[4 * i + c] = std::uint8_t((v * 255 + largest / 2) / largest);
+    }
+    im.rgba[4 * i + 3] = 255;
+  }
+  return im;
+}
+
+Image read_with_stb(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  const int n = int(std::min<std::size_t>(bytes.size(), std::numeric_limits<int>::max()));
   int w = 0, h = 0, channels = 0;
-  const std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(path.c_str(), &w, &h, &channels, 4), stbi_image_free);
-  if (!data) fail_file(path, std::string("cannot be read as an image (") + stbi_failure_reason() + ")");
+  if (!stbi_info_from_memory(bytes.data(), n, &w, &h, &channels)) {
+    if (const char* format = format_not_read(bytes))
+      fail_file(path,
+                std::string("a ") + format + " image: quadsimp reads PNG, JPEG, BMP, TGA and PNM; save it as PNG");
+    fail_file(path, "cannot be read as an image (not PNG, JPEG, BMP, TGA or PNM, or corrupt)");
+  }
+  if (const std::string why = size_refused(std::size_t(std::max(w, 0)), std::size_t(std::max(h, 0))); !why.empty())
+    fail_file(path, why);
+  // No BMP stb reads (uncompressed) or TGA (runs of 128 texels at most) holds more than
+  // 64 texels a byte: one that claims more is cut short, and stb would allocate its texels
+  // and fill them with black, a texel at a time.
+  if (std::size_t(w) * std::size_t(h) > 64 * bytes.size()) fail_file(path, too_short(std::size_t(w), std::size_t(h)));
+  int loaded_w = 0, loaded_h = 0;
+  const std::unique_ptr<stbi_uc, void (*)(void*)> data(
+      stbi_load_from_memory(bytes.data(), n, &loaded_w, &loaded_h, &channels, 4), stbi_image_free);
+  if (!data || loaded_w != w || loaded_h != h) {
+    const char* why = stbi_failure_reason();  // none on some of stb's failures
+    fail_file(path, std::string("cannot be read as an image (") + (why ? why : "corrupt") + ")");
+  }
   Image im;
   im.width = w, im.height = h;
   im.rgba.assign(data.get(), data.get() + std::size_t(w) * std::size_t(h) * 4);
   return im;
+}
+
+}  // namespace
+
+Image read_image(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) fail_file(path, "no such image file");
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in && !in.eof()) fail_file(path, "cannot be read");
+  if (starts_with(bytes, "\x89PNG\r\n\x1a\n", 8)) return read_png(path, bytes);
+  if (starts_with(bytes, "\xff\xd8\xff", 3)) return read_jpeg(path, bytes);
+  if (starts_with(bytes, "P5", 2) || starts_with(bytes, "P6", 2)) return read_pnm(path, bytes);
+  return read_with_stb(path, bytes);
 }
 
 void write_png(const std::string& path, const Image& im) {

@@ -1,6 +1,7 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "quadsimp/mesh/mesh_file.h"
@@ -9,8 +10,14 @@
 
 namespace qs {
 
-//! Reads a PNG, JPEG, BMP, TGA, GIF (its first frame), PSD, PNM or HDR image as RGBA.
-//! \throw InvalidInput "PATH: why" for a file that is missing or not such an image.
+//! The most texels read_image() takes (16,384 squared: 1 GiB as RGBA).
+inline constexpr std::size_t kMaxImageTexels = std::size_t(1) << 28;
+
+//! Reads a PNG (libpng), JPEG (libjpeg-turbo), BMP or TGA (stb), or binary PNM image
+//! (ours) as RGBA, the texels as stored (no gamma or colour-space conversion; PNM's scaled
+//! from its largest value to 255).
+//! \throw InvalidInput "PATH: why" for a file that is missing, not such an image (GIF,
+//! PSD, HDR, TIFF and WebP named as such), corrupt, or over kMaxImageTexels.
 Image read_image(const std::string& path);
 
 //! Writes a PNG, RGB where every texel is opaque, RGBA otherwise (stb_image_write's
