@@ -1,25 +1,28 @@
 #!/usr/bin/env bash
 # Coverage-guided fuzzing (libFuzzer, with AddressSanitizer and UndefinedBehaviorSanitizer)
-# of the mesh readers and of the whole run on small meshes (tests/fuzz/): builds
-# build-fuzz/ with clang, writes a seed corpus of small files in every format, and runs
-# five campaigns of SECONDS each (default 300) on all cores: one per reader (PLY, OBJ,
-# OFF, STL: in one campaign for all four, the small readers' files were too few of the
-# corpus to be mutated much), then the whole run. Inputs that crash, hang (over 20 s),
-# allocate over 2 GB, break a promise (fuzz_input.h's require()) or throw anything but a
-# refusal go to build-fuzz/findings/CAMPAIGN/, and a fuzzer that stops before its time is
-# reported with its log's end; replay a finding with `build-fuzz/tests/fuzz/TARGET FILE`.
+# of the mesh readers, the texture images' reader and the whole run on small meshes
+# (tests/fuzz/): builds build-fuzz/ with clang, writes a seed corpus of small files in
+# every format, and runs six campaigns of SECONDS each (default 300) on all cores: one per
+# mesh reader (PLY, OBJ, OFF, STL: in one campaign for all four, the small readers' files
+# were too few of the corpus to be mutated much), one for images, then the whole run.
+# libpng and libjpeg-turbo, Debian's builds, are not instrumented, so their inputs are
+# mutated blind (OSS-Fuzz fuzzes them upstream); our code and stb's decoders guide it.
+# Inputs that crash, hang (over 20 s), allocate over 2 GB, break a promise (fuzz_input.h's
+# require()) or throw anything but a refusal go to build-fuzz/findings/CAMPAIGN/, and a
+# fuzzer that stops before its time is reported with its log's end; replay a finding
+# with `build-fuzz/tests/fuzz/TARGET FILE`.
 # The corpora grow in build-fuzz/corpus/CAMPAIGN/ and a later run goes on from them; the
 # fuzzers' logs are in build-fuzz/logs/CAMPAIGN/. Needs scripts/setup.sh's packages, and
 # Debian's clang (libFuzzer), which it installs when missing.
 #
-#   scripts/fuzz.sh [SECONDS] [CAMPAIGN...]    CAMPAIGN: ply obj off stl simplify
+#   scripts/fuzz.sh [SECONDS] [CAMPAIGN...]    CAMPAIGN: ply obj off stl image simplify
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="$here/build-fuzz"
 seconds=${1:-300}
 shift || true
 campaigns=("$@")
-[ ${#campaigns[@]} -gt 0 ] || campaigns=(ply obj off stl simplify)
+[ ${#campaigns[@]} -gt 0 ] || campaigns=(ply obj off stl image simplify)
 if ! command -v clang++ >/dev/null; then  # libFuzzer comes with Debian's clang
   [ "$(id -u)" = 0 ] || { echo "fuzz: clang++ not found; as root: apt-get install clang" >&2; exit 1; }
   echo "fuzz: installing Debian's clang (libFuzzer)"
@@ -30,17 +33,20 @@ flags="-O1 -g -fsanitize=address,undefined,fuzzer-no-link -fno-omit-frame-pointe
 CXX=clang++ cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DQS_BUILD_FUZZERS=ON -DQS_BUILD_TESTS=OFF \
   -DQS_BUILD_BENCH=OFF -DQS_BUILD_CLI=OFF -DQS_BUILD_PLUGIN_2020=OFF -DQS_BUILD_PLUGIN_2025=OFF >/dev/null
-cmake --build "$build" --target read_mesh_fuzzer simplify_fuzzer --parallel "$(nproc)"
+cmake --build "$build" --target read_mesh_fuzzer read_image_fuzzer simplify_fuzzer --parallel "$(nproc)"
 python3 "$here/tests/fuzz/make_seeds.py" "$build/seeds"
 
 status=0
 for c in "${campaigns[@]}"; do
   case $c in
     ply | obj | off | stl) target=read_mesh_fuzzer seeds="$build/seeds/read_mesh_fuzzer/$c" max_len=65536 ;;
+    image) target=read_image_fuzzer seeds="$build/seeds/read_image_fuzzer" max_len=65536 ;;
     # The whole run's meshes stay small: a few hundred triangles at most.
     simplify) target=simplify_fuzzer seeds="$build/seeds/simplify_fuzzer" max_len=16384 ;;
-    *) echo "fuzz: unknown campaign '$c' (ply, obj, off, stl or simplify)" >&2; exit 2 ;;
+    *) echo "fuzz: unknown campaign '$c' (ply, obj, off, stl, image or simplify)" >&2; exit 2 ;;
   esac
+  dict=()  # the mesh formats' keywords
+  [ "$c" = image ] || dict=(-dict="$here/tests/fuzz/mesh.dict")
   mkdir -p "$build/corpus/$c" "$build/findings/$c" "$build/logs/$c"
   rm -f "$build/logs/$c"/fuzz-*.log  # an earlier run's, on more cores, would be read as this one's
   echo "fuzz: $c ($target) for $seconds s"
@@ -52,7 +58,7 @@ for c in "${campaigns[@]}"; do
   (cd "$build/logs/$c" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     "$build/tests/fuzz/$target" "$build/corpus/$c" "$seeds" -jobs="$(nproc)" -workers="$(nproc)" \
     -max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 -malloc_limit_mb=2048 -max_len="$max_len" \
-    -dict="$here/tests/fuzz/mesh.dict" -use_value_profile=1 -artifact_prefix="$build/findings/$c/" \
+    "${dict[@]}" -use_value_profile=1 -artifact_prefix="$build/findings/$c/" \
     >/dev/null 2>&1) || true
   for log in "$build/logs/$c"/fuzz-*.log; do
     grep -E '^#[0-9]+' "$log" | tail -1

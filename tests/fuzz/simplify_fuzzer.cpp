@@ -1,14 +1,16 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target: a small mesh file is loaded (cleaned, converted) and simplified with
 // options its first two bytes choose, and measured as the CLI measures it: the result must
-// pass validate(), its vertices and distances be finite, its report say its count, and a
-// second run give the same quads. Refusing the file (InvalidInput) is fine; any other
-// exception, a TopologyError above all, a crash, a sanitizer report or a hang is a bug.
+// pass validate(), its vertices and distances be finite, its report say its count, a
+// second run give the same quads, and a textured input's texture be baked onto them.
+// Refusing the file (InvalidInput) is fine; any other exception, a TopologyError above
+// all, a crash, a sanitizer report or a hang is a bug.
 // The meshes are small (odd geometry, not size, is what breaks operators), so each input
 // takes milliseconds.
 #include <cmath>
 
 #include "fuzz_input.h"
+#include "quadsimp/io/images.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/metrics/metrics.h"
 #include "quadsimp/reference/reference_surface.h"
@@ -49,7 +51,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   params.tau = (flags & 64) ? 0.2 : (flags & 128) ? 0.01 : params.tau;
   qs::Input in;
   try {
-    in = qs::load_input(qs::fuzz::write_input(data, size, 2), qs::convert_options(params));
+    in = qs::load_input(qs::fuzz::write_mesh(data, size, 2), qs::convert_options(params));
   } catch (const qs::InvalidInput&) {
     return 0;
   }
@@ -75,5 +77,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   require(std::isfinite(d.hausdorff) && std::isfinite(d.rms) && d.projectability >= 0 && d.projectability <= 1,
           "a distance is not finite, or projectability is not a share");
   qs::result_notes(report, quality, params.target_faces);
+  // A textured input's texture baked onto the quads, as the CLI writes it (a small atlas:
+  // its size does not change the code that runs). An image that cannot be read (a
+  // material naming a missing file) is refused, and the CLI writes no texture.
+  if (!in.source.texture.empty()) {
+    qs::TextureBakeOptions small;
+    small.max_side = qs::TextureBakeOptions::kSmallestSide;
+    qs::QuadTexture t;
+    try {
+      t = qs::texture_of_quads(in.source, in.quads, small);
+    } catch (const qs::InvalidInput&) {
+      return 0;
+    }
+    require(!t.empty() && t.corners.size() == in.quads.face_capacity(), "a texture without a tile per quad");
+    for (qs::Index f = 0; f < in.quads.face_capacity(); ++f)
+      for (const qs::TexCoord& c : t.corners[f])
+        require(!in.quads.is_face_live(f) || (c[0] >= 0 && c[0] <= 1 && c[1] >= 0 && c[1] <= 1),
+                "a quad corner's texture coordinates outside the atlas");
+  }
   return 0;
 }

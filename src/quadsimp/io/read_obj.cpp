@@ -31,7 +31,7 @@ std::string name_on(const detail::TextLines& line) {
 struct Material {
   Colour colour{255, 255, 255, 255};
   bool diffuse = false;  // Kd given
-  std::string image;     // a path readable from here, or none
+  std::string image;     // a path from here, or none; the file may be missing (the bake says so)
 };
 
 // map_Kd's image: the rest of the line, which may hold spaces, if that names a file; else
