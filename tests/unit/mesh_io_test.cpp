@@ -11,13 +11,11 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <random>
 #include <utility>
 
-// stb's writer makes the JPEGs read back here (images.cpp keeps its own copy private).
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb/stb_image_write.h>
+#include <turbojpeg.h>
 
 #include "fixtures/shapes.h"
 #include "quadsimp/convert/prepare_input.h"
@@ -129,14 +127,16 @@ std::string png_file(std::uint32_t w, std::uint32_t h, int depth, int colour, co
   return "\x89PNG\r\n\x1a\n" + png_chunk("IHDR", ihdr) + chunks + png_chunk("IDAT", zlib) + png_chunk("IEND", "");
 }
 
-// A JPEG of `w` x `h` RGB texels, from stb's writer at the best quality.
-std::string jpeg_file(int w, int h, const std::vector<std::uint8_t>& rgb) {
-  std::string out;
-  const auto append = [](void* to, void* data, int n) {
-    static_cast<std::string*>(to)->append(static_cast<char*>(data), std::size_t(n));
-  };
-  stbi_write_jpg_to_func(append, &out, w, h, 3, rgb.data(), 100);
-  return out;
+// A JPEG of `w` x `h` texels of `format` (TJPF_RGB, or TJPF_CMYK, which libjpeg-turbo
+// writes as Photoshop does: YCCK, the samples inverted), at the best quality.
+std::string jpeg_file(int w, int h, const std::vector<std::uint8_t>& texels, TJPF format = TJPF_RGB) {
+  const std::unique_ptr<void, int (*)(tjhandle)> tj(tjInitCompress(), tjDestroy);
+  unsigned char* out = nullptr;
+  unsigned long size = 0;
+  if (tjCompress2(tj.get(), texels.data(), w, 0, h, format, &out, &size, TJSAMP_444, 100, 0) != 0) return "";
+  const std::string bytes(reinterpret_cast<char*>(out), size);
+  tjFree(out);
+  return bytes;
 }
 
 // A 24-bit BMP of `w` x `h` (rows bottom up, padded to four bytes) of `bgr_rows`.
@@ -572,6 +572,17 @@ TEST_F(MeshIo, images_of_every_format_are_read_as_stored) {
     EXPECT_NEAR(jpeg.rgba[i + 1], 100, 3);
     EXPECT_NEAR(jpeg.rgba[i + 2], 50, 3);
     EXPECT_EQ(jpeg.rgba[i + 3], 255);
+  }
+  // CMYK: each channel times K, as MeshLab (Qt) and stb show them.
+  std::vector<std::uint8_t> cmyk;
+  for (int i = 0; i < 16 * 8; ++i) cmyk.insert(cmyk.end(), {10, 200, 100, 50});
+  const Image from_cmyk = read_image(write("cmyk.jpg", jpeg_file(16, 8, cmyk, TJPF_CMYK)));
+  ASSERT_EQ(from_cmyk.rgba.size(), 16u * 8 * 4);
+  for (std::size_t i = 0; i < from_cmyk.rgba.size(); i += 4) {
+    EXPECT_NEAR(from_cmyk.rgba[i], 2, 1);  // 10 x 50 / 255
+    EXPECT_NEAR(from_cmyk.rgba[i + 1], 39, 1);
+    EXPECT_NEAR(from_cmyk.rgba[i + 2], 20, 1);
+    EXPECT_EQ(from_cmyk.rgba[i + 3], 255);
   }
   // Its end marker cut off: read, as MeshLab shows such files (libjpeg-turbo warns).
   EXPECT_EQ(read_image(write("cut.jpg", jpeg_bytes.substr(0, jpeg_bytes.size() - 2))).rgba, jpeg.rgba);

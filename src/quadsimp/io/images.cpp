@@ -162,11 +162,21 @@ Image read_jpeg(const std::string& path, const std::vector<std::uint8_t>& bytes)
   if (tjDecompressHeader3(tj.get(), bytes.data(), bytes.size(), &w, &h, &subsampling, &colour_space) != 0) failed();
   if (w <= 0 || h <= 0) fail_file(path, "cannot be read as a JPEG image (its header cut short)");
   Image im = sized(path, std::size_t(w), std::size_t(h));
+  // CMYK and YCCK files (Adobe's, their samples inverted) are decoded as CMYK, four bytes
+  // a texel as RGBA, and each channel is multiplied by K, as Qt (MeshLab) and stb read them.
+  const bool cmyk = colour_space == TJCS_CMYK || colour_space == TJCS_YCCK;
   // A warning (data cut short, an extra byte) leaves what was decoded, as MeshLab shows
   // it; a progressive file of over 500 scans, which takes minutes to decode, is refused.
-  if (tjDecompress2(tj.get(), bytes.data(), bytes.size(), im.rgba.data(), w, 0, h, TJPF_RGBA, TJFLAG_LIMITSCANS) != 0 &&
+  if (tjDecompress2(tj.get(), bytes.data(), bytes.size(), im.rgba.data(), w, 0, h, cmyk ? TJPF_CMYK : TJPF_RGBA,
+                    TJFLAG_LIMITSCANS) != 0 &&
       tjGetErrorCode(tj.get()) != TJERR_WARNING)
     failed();
+  if (cmyk)
+    for (std::size_t i = 0; i < im.rgba.size(); i += 4) {
+      const unsigned k = im.rgba[i + 3];
+      for (std::size_t c = 0; c < 3; ++c) im.rgba[i + c] = std::uint8_t((im.rgba[i + c] * k + 127) / 255);
+      im.rgba[i + 3] = 255;
+    }
   return im;
 }
 
