@@ -60,7 +60,7 @@ std::string too_short(std::size_t w, std::size_t h) {
   return "its data too short for its " + std::to_string(w) + " x " + std::to_string(h) + " texels";
 }
 
-// A w x h image of black texels to decode into, if size_refused() allows it.
+// A w x h image of zeroed texels to decode into, if size_refused() allows it.
 Image sized(const std::string& path, std::size_t w, std::size_t h) {
   if (const std::string why = size_refused(w, h); !why.empty()) fail_file(path, why);
   Image im;
