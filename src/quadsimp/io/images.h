@@ -14,8 +14,8 @@ namespace qs {
 inline constexpr std::size_t kMaxImageTexels = std::size_t(1) << 28;
 
 //! Reads a PNG (libpng), JPEG (libjpeg-turbo), BMP or TGA (stb), or binary PNM image
-//! (ours) as RGBA, the texels as stored (no gamma or colour-space conversion; PNM's scaled
-//! from its largest value to 255).
+//! (ours) as RGBA, the texels as stored (no gamma conversion), as MeshLab shows them: a
+//! CMYK JPEG's channels times K, PNM's samples scaled from its largest value to 255.
 //! \throw InvalidInput "PATH: why" for a file that is missing, not such an image (GIF,
 //! PSD, HDR, TIFF and WebP named as such), corrupt, or over kMaxImageTexels.
 Image read_image(const std::string& path);
