@@ -47,13 +47,14 @@ inline std::string write_file(const std::uint8_t* data, std::size_t size, std::s
 }
 
 //! Writes a mesh file, its format chosen by the low two bits of the first byte (PLY, OBJ,
-//! OFF or STL), and returns its path. The same bytes go to m.mtl beside it, so that an
-//! OBJ's "mtllib m.mtl" reads its own material statements (which the OBJ reader skips)
-//! and the textures' code runs.
+//! OFF or STL), and returns its path. An OBJ's bytes go to m.mtl beside it too, so that
+//! its "mtllib m.mtl" reads its own material statements (which the OBJ reader skips) and
+//! the textures' code runs; no other format reads a material file.
 inline std::string write_mesh(const std::uint8_t* data, std::size_t size, std::size_t header) {
   static const char* const extensions[] = {"ply", "obj", "off", "stl"};
-  write_file(data, size, header, "m.mtl");
-  return write_file(data, size, header, std::string("in.") + extensions[size == 0 ? 0 : data[0] % 4]);
+  const int format = size == 0 ? 0 : data[0] % 4;
+  if (format == 1) write_file(data, size, header, "m.mtl");
+  return write_file(data, size, header, std::string("in.") + extensions[format]);
 }
 
 //! A finding when `ok` is false: a promise of the code under test (`what`) was broken.

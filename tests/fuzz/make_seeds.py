@@ -194,11 +194,12 @@ def main(folder):
                     out.write(bytes([fmt | mode, options]) + data)
             n += 1
     os.makedirs(os.path.join(folder, "read_image_fuzzer"), exist_ok=True)
-    for name, data in images().items():
+    seeds = images()
+    for name, data in seeds.items():
         with open(os.path.join(folder, "read_image_fuzzer", name), "wb") as out:
             out.write(data)
     print(f"{n} meshes in {folder}/read_mesh_fuzzer/FORMAT and, with options, in {folder}/simplify_fuzzer; "
-          f"{len(images())} images in {folder}/read_image_fuzzer")
+          f"{len(seeds)} images in {folder}/read_image_fuzzer")
 
 
 if __name__ == "__main__":

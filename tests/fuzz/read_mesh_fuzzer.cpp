@@ -3,8 +3,9 @@
 // read_mesh()'s word (every corner names a vertex, colours and texture come one per
 // element or not at all), since the cleaning trusts it. Anything else (a crash, a
 // sanitizer report, another exception, a hang or a huge allocation, which libFuzzer's
-// -timeout and -malloc_limit_mb catch) is a bug. The file lies beside an image and its
-// own bytes as m.mtl (fuzz_input.h), so that textures' code runs. scripts/fuzz.sh runs it.
+// -timeout and -malloc_limit_mb catch) is a bug. The file lies beside an image (and an
+// OBJ beside its own bytes as m.mtl: fuzz_input.h), so that textures' code runs.
+// scripts/fuzz.sh runs it.
 
 #include "fuzz_input.h"
 #include "quadsimp/io/mesh_io.h"

@@ -23,7 +23,7 @@ for target_header in read_mesh_fuzzer:1 simplify_fuzzer:2; do
     [ "$target" = simplify_fuzzer ] || [ "$(basename "$(dirname "$seed")")" = "${extensions[$((format % 4))]}" ] \
       || { echo "FAIL: $seed is not in its format's folder"; exit 1; }
     tail -c +$((header + 1)) "$seed" > "$file"
-    cp "$file" "$work/m.mtl"  # as fuzz_input.h's write_mesh() does, beside the image t.png
+    [[ $file != *.obj ]] || cp "$file" "$work/m.mtl"  # as fuzz_input.h's write_mesh() does
     rm -f "$work/quads_texture.png"
     log=$("$cli" convert "$file" "$work/quads.obj" 2>&1) || { echo "FAIL: $target/$(basename "$seed"): $log"; exit 1; }
     case $(basename "$seed") in
