@@ -165,11 +165,17 @@ def images(w=4, h=3):
     tga = lambda kind, depth, descriptor: struct.pack("<BBBHHBHHHHBB", 0, 0, kind, 0, 0, 0, 0, 0, w, h, depth,
                                                       descriptor)
     rle = b"".join(bytes((0x80 | (w - 1),) + tuple(reversed(texel(0, y))) + (255,)) for y in reversed(range(h)))
+    decimal = lambda samples: b" ".join(b"%d" % v for v in samples) + b"\n"
+    rows = [[(x + y) % 2 for x in range(w)] for y in range(h)]  # a bitmap's checkerboard (w <= 8)
+    bits = [b for r in rows for b in r]
     return {"rgba.png": png(w, h, 8, 6, rgba_rows), "grey16.png": png(w, h, 16, 0, grey16_rows),
             "palette.png": png(w, h, 8, 3, palette_rows, palette),
             "interlaced.png": png(w, h, 8, 6, adam7, interlace=1), "grey.jpg": jpeg_grey(), "rgb.bmp": bmp,
             "rgb.tga": tga(2, 24, 0) + b"".join(bgr_up), "rle.tga": tga(10, 32, 8) + rle,
-            "rgb.ppm": b"P6 %d %d 255\n" % (w, h) + rgb, "grey.pgm": b"P5\n%d %d\n255\n" % (w, h) + rgb[:w * h]}
+            "rgb.ppm": b"P6 %d %d 255\n" % (w, h) + rgb, "grey.pgm": b"P5\n%d %d\n255\n" % (w, h) + rgb[:w * h],
+            "plain.ppm": b"P3 %d %d 255\n" % (w, h) + decimal(rgb), "plain.pgm": b"P2 %d %d 255\n" % (w, h) +
+            decimal(rgb[:w * h]), "plain.pbm": b"P1 %d %d\n" % (w, h) + decimal(bits),
+            "bits.pbm": b"P4 %d %d\n" % (w, h) + bytes(int("".join(map(str, r)).ljust(8, "0"), 2) for r in rows)}
 
 
 def main(folder):

@@ -54,5 +54,5 @@ for seed in "$work/seeds/read_image_fuzzer"/*; do
   [ -f "$work/square_texture.png" ] || { echo "FAIL: $(basename "$seed") not read as an image: $log"; exit 1; }
   images=$((images + 1))
 done
-[ "$images" = 10 ] || { echo "FAIL: $images image seeds, expected 10"; exit 1; }
+[ "$images" = 14 ] || { echo "FAIL: $images image seeds, expected 14"; exit 1; }
 echo "fuzz seeds: $count load as their shapes, $images images as textures"

@@ -560,6 +560,16 @@ TEST_F(MeshIo, images_of_every_format_are_read_as_stored) {
   // big-endian.
   expect_texels("dim.pgm", "P5 2 1 15\n\x0f\x05"s, 2, 1, {255, 255, 255, 255, 85, 85, 85, 255});
   expect_texels("wide.ppm", "P6 1 1 510\n\x01\xfe\0\xff\0\0"s, 1, 1, {255, 128, 0, 255});
+  // PNM's other kinds, as Qt (MeshLab) reads them: samples in decimal (P2, P3), and
+  // bitmaps (P1 in digits, P4 in bits, rows padded to a byte), whose 1 is black.
+  expect_texels("plain.ppm", "P3 # rgb\n2 1\n255\n1 2 3\n4 5 6\n"s, 2, 1, {1, 2, 3, 255, 4, 5, 6, 255});
+  expect_texels("plain.pgm", "P2 2 1 15 15\t5"s, 2, 1, {255, 255, 255, 255, 85, 85, 85, 255});
+  expect_texels("deep.ppm", "P3 1 1 65535 65535 0 32768"s, 1, 1, {255, 0, 128, 255});
+  expect_texels("plain.pbm", "P1 3 1\n1 0\n1"s, 3, 1, {0, 0, 0, 255, 255, 255, 255, 255, 0, 0, 0, 255});
+  expect_texels("packed.pbm", "P1\n# no spaces\n3 1\n010"s, 3, 1,
+                {255, 255, 255, 255, 0, 0, 0, 255, 255, 255, 255, 255});
+  expect_texels("bits.pbm", "P4 3 2\n\xa0\x40"s, 3, 2,
+                {0, 0, 0, 255, 255, 255, 255, 255, 0, 0, 0, 255, 255, 255, 255, 255, 0, 0, 0, 255, 255, 255, 255, 255});
   // JPEG (libjpeg-turbo): lossy, so within a few levels of the flat colour written.
   std::vector<std::uint8_t> rgb;
   for (int i = 0; i < 16 * 8; ++i) rgb.insert(rgb.end(), {200, 100, 50});
@@ -639,6 +649,13 @@ TEST_F(MeshIo, images_that_broke_a_decoder_are_refused) {
   expect_refused("cut.ppm", "P6 2 1 255\n\1\2\3\4\5"s, "cannot be read as a PNM image (cut short)");
   expect_refused("long.ppm", "P6 12345678901 1 255\n\1\2\3"s, "a header of no width, height or largest value");
   expect_refused("deep.pgm", "P5 1 1 65536\n\1\2"s, "a largest value not from 1 to 65535");
+  expect_refused("cut.pgm", "P2 2 2 255\n1 2 3 "s, "(cut short, or a sample not a number");
+  expect_refused("word.pgm", "P2 1 1 255\nten"s, "(cut short, or a sample not a number");
+  expect_refused("cut.pbm", "P1 2 2\n1 0 1 "s, "(cut short, or a sample not 0 or 1)");
+  expect_refused("two.pbm", "P1 1 1\n2"s, "(cut short, or a sample not 0 or 1)");
+  // Far more texels than bytes: refused before allocating.
+  expect_refused("short.pbm", "P4 16000 16000\n\xff"s, "cannot be read as a PNM image (cut short)");
+  expect_refused("short.ppm", "P3 10000 10000 255\n1 2 3"s, "cannot be read as a PNM image (cut short)");
   // Formats not read, named.
   expect_refused("a.gif", "GIF89a\1\0\1\0\0\0\0;"s, "a GIF image: quadsimp reads PNG, JPEG, BMP, TGA and PNM");
   expect_refused("a.psd", "8BPS\0\1"s, "a PSD image");

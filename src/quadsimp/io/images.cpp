@@ -191,38 +191,71 @@ const char* format_not_read(const std::vector<std::uint8_t>& bytes) {
   return nullptr;
 }
 
-// Binary PNM (P5 grey, P6 RGB) is read here: stb's reader overflowed on long numbers in
-// its header, read 16-bit files past their texels, and left files cut short black.
-// Samples are scaled from the file's largest value to 255, as Qt (MeshLab) reads them.
+// Netpbm's six kinds (P1 to P6: bitmaps, grey and RGB, each written in decimal or in
+// bytes) are read here, as Qt (MeshLab) reads them all: stb read P5 and P6 only, and
+// overflowed on long numbers in their header, read 16-bit files past their texels and
+// left files cut short black. Samples are scaled from the file's largest value to 255, as
+// Qt reads them; a bitmap's 1 is black.
 Image read_pnm(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   const auto refused = [&](const char* why) {
     fail_file(path, std::string("cannot be read as a PNM image (") + why + ")");
   };
-  std::size_t at = 2, field[3] = {0, 0, 0};  // width, height, largest value
-  for (std::size_t& value : field) {
+  const char kind = char(bytes[1]);
+  const bool decimal = kind <= '3', bitmap = kind == '1' || kind == '4';
+  const std::size_t channels = kind == '3' || kind == '6' ? 3 : 1;
+  std::size_t at = 2;
+  // Whitespace and comments, which Netpbm allows between any two numbers.
+  const auto skip_space = [&] {
     while (at < bytes.size() && (std::isspace(bytes[at]) || bytes[at] == '#'))
       if (bytes[at++] == '#')
         while (at < bytes.size() && bytes[at] != '\n' && bytes[at] != '\r') ++at;
+  };
+  // A decimal number of at most `digits` digits; false where there is none, or a longer one.
+  const auto number = [&](std::size_t& value, std::size_t digits) {
+    skip_space();
     const std::size_t start = at;
-    while (at < bytes.size() && std::isdigit(bytes[at]) && at - start < 9) value = value * 10 + (bytes[at++] - '0');
-    if (at == start || (at < bytes.size() && std::isdigit(bytes[at])))
-      refused("a header of no width, height or largest value");
-  }
-  if (at >= bytes.size() || !std::isspace(bytes[at++])) refused("cut short");
-  const std::size_t w = field[0], h = field[1], largest = field[2];
+    value = 0;
+    while (at < bytes.size() && std::isdigit(bytes[at]) && at - start < digits)
+      value = value * 10 + (bytes[at++] - '0');
+    return at > start && !(at < bytes.size() && std::isdigit(bytes[at]));
+  };
+  std::size_t w = 0, h = 0, largest = 1;
+  if (!number(w, 9) || !number(h, 9) || (!bitmap && !number(largest, 9)))
+    refused("a header of no width, height or largest value");
   if (largest == 0 || largest > 65535) refused("a largest value not from 1 to 65535");
+  if (!decimal && (at >= bytes.size() || !std::isspace(bytes[at++]))) refused("cut short");
   if (const std::string why = size_refused(w, h); !why.empty()) fail_file(path, why);
-  const std::size_t channels = bytes[1] == '6' ? 3 : 1, sample = largest > 255 ? 2 : 1;  // 16 bits: big-endian
-  if (bytes.size() - at < w * h * channels * sample) refused("cut short");
+  // Each sample takes a byte at least (a bit in P4), so a file too short is refused before
+  // its texels are allocated.
+  const std::size_t sample = largest > 255 ? 2 : 1;  // in bytes, big-endian
+  const std::size_t row = kind == '4' ? (w + 7) / 8 : w * channels * sample;
+  if (bytes.size() - at < (decimal ? w * channels : row) * h) refused("cut short");
   Image im = sized(path, w, h);
-  for (std::size_t i = 0; i < w * h; ++i) {
-    for (std::size_t c = 0; c < 3; ++c) {
-      const std::uint8_t* s = &bytes[at + (i * channels + (channels == 3 ? c : 0)) * sample];
-      const std::size_t v = std::min<std::size_t>(sample == 2 ? s[0] << 8 | s[1] : s[0], largest);
-      im.rgba[4 * i + c] = std::uint8_t((v * 255 + largest / 2) / largest);
+  std::size_t v[3] = {0, 0, 0};
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0, i = y * w; x < w; ++x, ++i) {
+      for (std::size_t c = 0; c < channels; ++c) {
+        if (kind == '1') {  // digits 0 and 1, spaces optional
+          skip_space();
+          if (at >= bytes.size() || (bytes[at] != '0' && bytes[at] != '1'))
+            refused("cut short, or a sample not 0 or 1");
+          v[c] = bytes[at++] - '0';
+        } else if (decimal) {
+          if (!number(v[c], 5)) refused("cut short, or a sample not a number of 5 digits at most");
+        } else if (kind == '4') {
+          v[c] = bytes[at + y * row + x / 8] >> (7 - x % 8) & 1;
+        } else {
+          const std::uint8_t* s = &bytes[at + y * row + (x * channels + c) * sample];
+          v[c] = sample == 2 ? s[0] << 8 | s[1] : s[0];
+        }
+      }
+      for (std::size_t c = 0; c < 3; ++c) {
+        const std::size_t value = v[channels == 3 ? c : 0];
+        im.rgba[4 * i + c] =
+            bitmap ? (value ? 0 : 255) : std::uint8_t((std::min(value, largest) * 255 + largest / 2) / largest);
+      }
+      im.rgba[4 * i + 3] = 255;
     }
-    im.rgba[4 * i + 3] = 255;
-  }
   return im;
 }
 
@@ -264,7 +297,7 @@ Image read_image(const std::string& path) {
   if (!in && !in.eof()) fail_file(path, "cannot be read");
   if (starts_with(bytes, "\x89PNG\r\n\x1a\n", 8)) return read_png(path, bytes);
   if (starts_with(bytes, "\xff\xd8\xff", 3)) return read_jpeg(path, bytes);
-  if (starts_with(bytes, "P5", 2) || starts_with(bytes, "P6", 2)) return read_pnm(path, bytes);
+  if (bytes.size() >= 2 && bytes[0] == 'P' && bytes[1] >= '1' && bytes[1] <= '6') return read_pnm(path, bytes);
   return read_with_stb(path, bytes);
 }
 
