@@ -13,9 +13,10 @@ namespace qs {
 //! The most texels read_image() takes (16,384 squared: 1 GiB as RGBA).
 inline constexpr std::size_t kMaxImageTexels = std::size_t(1) << 28;
 
-//! Reads a PNG (libpng), JPEG (libjpeg-turbo), BMP or TGA (stb), or binary PNM image
-//! (ours) as RGBA, the texels as stored (no gamma conversion), as MeshLab shows them: a
-//! CMYK JPEG's channels times K, PNM's samples scaled from its largest value to 255.
+//! Reads a PNG (libpng), JPEG (libjpeg-turbo), BMP or TGA (stb), or PNM image of any
+//! kind (ours: PBM, PGM, PPM, plain or raw) as RGBA, the texels as stored (no gamma
+//! conversion), as MeshLab shows them: a CMYK JPEG's channels times K, PNM's samples
+//! scaled from its largest value to 255, a PBM's 1 black.
 //! \throw InvalidInput "PATH: why" for a file that is missing, not such an image (GIF,
 //! PSD, HDR, TIFF and WebP named as such), corrupt, or over kMaxImageTexels.
 Image read_image(const std::string& path);
