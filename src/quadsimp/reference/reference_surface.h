@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "quadsimp/mesh/tri_mesh.h"
+#include "quadsimp/util/prefetch.h"
 
 namespace qs {
 
@@ -63,6 +64,18 @@ class ReferenceSurface {
   //! the sheet the point was on. Falls back to project() when the walk leaves M0,
   //! meets a disagreeing triangle or takes too many steps.
   SurfacePoint project_near(Index start, const Vec3& p, const Vec3& dir, double max_dist) const;
+  //! Prefetches (qs::prefetch()) what project_near() reads of triangle `f`; then, as a
+  //! second step once `f`'s corner numbers have come, what it and normal_at() read of
+  //! corner `v`.
+  void prefetch_triangle(Index f) const {
+    prefetch(&normals_[f]);
+    prefetch(&mesh_.faces[f]);
+    prefetch(&adjacency_[f]);
+  }
+  void prefetch_corner(Index v) const {
+    prefetch(&mesh_.positions[v]);
+    prefetch(&vertex_normals_[v]);
+  }
   //! Nearest point of the line only (no fallback).
   SurfacePoint ray_project(const Vec3& p, const Vec3& dir, double max_dist) const;
   //! Closest point within max_dist; if `normal` is nonzero, only triangles whose

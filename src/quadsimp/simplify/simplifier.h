@@ -202,6 +202,7 @@ class Simplifier {
 
   // Spring smoothing (smoothing.cpp).
   void smooth_region(int sweeps);
+  void prefetch_feet() const;
   void smooth_vertex(Index v);
 
   // Edge rotations (rotations.cpp).
@@ -326,7 +327,7 @@ class Simplifier {
   double fine_above_ = std::numeric_limits<double>::infinity();  // the fine phase runs above this face count
   std::uint32_t stamp_ = 0;
   std::vector<Entry> heap_;
-  std::vector<Index> region_faces_, region_verts_, work_, cand_, border_verts_;
+  std::vector<Index> region_faces_, region_verts_, work_, cand_, border_verts_, requeued_;
   // Every live border vertex is among these (in no order, once each: border_noted_): those
   // on the border at the start or at the last coarsen_border(), and those of the zone an
   // operation smoothed since, which holds every vertex it touched (note_border()). A scan

@@ -469,15 +469,24 @@ void Simplifier::add_faces_around(Index v, std::vector<Index>& faces) {
 
 void Simplifier::requeue_region() {
   ++stamp_;
+  requeued_.clear();
   for (Index v : region_verts_) {
     if (!m_.is_vertex_live(v)) continue;
     m_.for_each_outgoing(v, [&](Index h) {
       const Index f = QuadMesh::face(h);
       if (face_mark_[f] == stamp_) return;
       face_mark_[f] = stamp_;
-      push_face(f);
+      requeued_.push_back(f);
     });
   }
+  // In adaptive mode each key walks M0 from under the face's centre (s_weight()), and
+  // those triangles missed the cache as the smoothing's did (prefetch_feet()).
+  if (opt_.adaptive) {
+    const TriMesh& t = ref_.mesh();
+    for (Index f : requeued_)
+      if (centre_hint(f) < t.n_faces()) ref_.prefetch_triangle(centre_hint(f));
+  }
+  for (Index f : requeued_) push_face(f);
 }
 
 void Simplifier::cycle(Index f, Index k, const Vec3& pos, const SurfacePoint& foot) {

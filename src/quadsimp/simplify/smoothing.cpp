@@ -127,8 +127,23 @@ void Simplifier::smooth_region(int sweeps) {
     if (m_.is_face_live(f))
       for (Index k = 0; k < 4; ++k) add_vertex(m_.vertex(f, k));
   std::sort(region_verts_.begin(), region_verts_.end());
+  prefetch_feet();
   for (int sweep = 0; sweep < sweeps; ++sweep)
     for (Index v : region_verts_) smooth_vertex(v);
+}
+
+// The triangles under the region's vertices lie anywhere in M0's arrays, and on large
+// inputs each first read of one missed the cache: the walks of the first sweep stalled on
+// them one after the other (project_near() was 16% of a uniform run of 1.1 million
+// triangles). Asked for all at once, their fetches overlap.
+void Simplifier::prefetch_feet() const {
+  const TriMesh& t = ref_.mesh();
+  for (Index v : region_verts_)
+    if (foot_face_[v] < t.n_faces()) ref_.prefetch_triangle(foot_face_[v]);
+  // Then their corners, whose numbers the first fetches brought.
+  for (Index v : region_verts_)
+    if (foot_face_[v] < t.n_faces())
+      for (Index c : t.faces[foot_face_[v]]) ref_.prefetch_corner(c);
 }
 
 }  // namespace qs::detail
