@@ -64,17 +64,18 @@ class ReferenceSurface {
   //! the sheet the point was on. Falls back to project() when the walk leaves M0,
   //! meets a disagreeing triangle or takes too many steps.
   SurfacePoint project_near(Index start, const Vec3& p, const Vec3& dir, double max_dist) const;
-  //! Prefetches (qs::prefetch()) what project_near() reads of triangle `f`; then, as a
-  //! second step once `f`'s corner numbers have come, what it and normal_at() read of
-  //! corner `v`.
+  //! Prefetches (qs::prefetch()) what project_near() reads first of triangle `f`; then,
+  //! as a second step once `f`'s corner numbers have come, what it and normal_at() read of
+  //! its corners. Either ignores an `f` that is no triangle (kNone).
   void prefetch_triangle(Index f) const {
+    if (f >= mesh_.n_faces()) return;
     prefetch(&normals_[f]);
     prefetch(&mesh_.faces[f]);
     prefetch(&adjacency_[f]);
   }
-  void prefetch_corner(Index v) const {
-    prefetch(&mesh_.positions[v]);
-    prefetch(&vertex_normals_[v]);
+  void prefetch_corners(Index f) const {
+    if (f >= mesh_.n_faces()) return;
+    for (Index v : mesh_.faces[f]) prefetch(&mesh_.positions[v]), prefetch(&vertex_normals_[v]);
   }
   //! Nearest point of the line only (no fallback).
   SurfacePoint ray_project(const Vec3& p, const Vec3& dir, double max_dist) const;

@@ -481,11 +481,8 @@ void Simplifier::requeue_region() {
   }
   // In adaptive mode each key walks M0 from under the face's centre (s_weight()), and
   // those triangles missed the cache as the smoothing's did (prefetch_feet()).
-  if (opt_.adaptive) {
-    const TriMesh& t = ref_.mesh();
-    for (Index f : requeued_)
-      if (centre_hint(f) < t.n_faces()) ref_.prefetch_triangle(centre_hint(f));
-  }
+  if (opt_.adaptive)
+    for (Index f : requeued_) ref_.prefetch_triangle(centre_hint(f));
   for (Index f : requeued_) push_face(f);
 }
 

@@ -137,13 +137,9 @@ void Simplifier::smooth_region(int sweeps) {
 // them one after the other (project_near() was 16% of a uniform run of 1.1 million
 // triangles). Asked for all at once, their fetches overlap.
 void Simplifier::prefetch_feet() const {
-  const TriMesh& t = ref_.mesh();
-  for (Index v : region_verts_)
-    if (foot_face_[v] < t.n_faces()) ref_.prefetch_triangle(foot_face_[v]);
+  for (Index v : region_verts_) ref_.prefetch_triangle(foot_face_[v]);
   // Then their corners, whose numbers the first fetches brought.
-  for (Index v : region_verts_)
-    if (foot_face_[v] < t.n_faces())
-      for (Index c : t.faces[foot_face_[v]]) ref_.prefetch_corner(c);
+  for (Index v : region_verts_) ref_.prefetch_corners(foot_face_[v]);
 }
 
 }  // namespace qs::detail
