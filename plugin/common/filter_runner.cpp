@@ -57,8 +57,9 @@ LayerQuads run_simplification(MeshFile layer, const std::string& name, const Sim
   const auto t0 = std::chrono::steady_clock::now();
   Input in = prepare_input(std::move(layer), name, convert_options(params), log_into(o));
   describe_input(in, name, o);
+  const Fitmaps fitmaps = input_fitmaps(in, params, progress);  // before ref: input_fitmaps()
   const ReferenceSurface ref(std::move(in.reference));
-  const SimplifyReport r = simplify_input(in, ref, params, progress);
+  const SimplifyReport r = simplify_input(in, ref, params, progress, &fitmaps);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::vector<Index> flawed;
   const QuadQuality q = quad_quality(in.quads, &ref, &flawed);

@@ -273,17 +273,17 @@ int run_simplify(const SimplifyArgs& a) {
     const LogFn log = stderr_log(a.quiet);
     Input in = load_input(a.input, convert_options(params), log,
                           remesher(a.remesh, params.crease_angle, most, finest, a.input, log));
-    const ReferenceSurface ref(std::move(in.reference));
     const Index converted = in.quads.n_faces();  // what a share of the quads is of
+    const double area = surface_area(in.reference);  // the reference surface's area()
     // The levels' counts, most quads first, and the files they go to.
     std::vector<Index> counts;
     for (const SimplifyParams& p : levels) {
-      counts.push_back(target_faces_of(p, converted, ref.area()));
+      counts.push_back(target_faces_of(p, converted, area));
       if (log && p.target_edge > 0) {  // before the run, which may be long; the count the pipeline takes
         char line[200];
         std::snprintf(line, sizeof line,
                       ": --edge-length %g: a target of %u quads (the surface's area, %g, over %g squared)",
-                      p.target_edge, counts.back(), ref.area(), p.target_edge);
+                      p.target_edge, counts.back(), area, p.target_edge);
         log(a.input + line);
       }
     }
@@ -296,6 +296,9 @@ int run_simplify(const SimplifyArgs& a) {
       if (auto err = check_output_path(a.input, outputs.back()); !err.empty()) return refuse(err);
       if (const std::string why = texture_clash(outputs.back(), in); !why.empty()) return refuse(why);
     }
+    const ProgressFn progress = progress_bar(a.quiet);
+    const Fitmaps fitmaps = input_fitmaps(in, params, progress);  // before ref: input_fitmaps()
+    const ReferenceSurface ref(std::move(in.reference));
     // Distances from the input as given, as `quadsimp stats` measures them, not from its
     // remeshing. The quads' orientation is still judged against the remeshing: the normals
     // a coarse CAD mesh interpolates across its sharp edges face away from its flat sides (a
@@ -328,7 +331,7 @@ int run_simplify(const SimplifyArgs& a) {
         print_quality(q, &d);
       }
     };
-    simplify_levels(in, ref, params, counts, level_done, progress_bar(a.quiet));
+    simplify_levels(in, ref, params, counts, level_done, progress, &fitmaps);
     return kOk;
   } catch (const InvalidInput& e) {
     std::cerr << "quadsimp simplify: " << e.what() << "\n";

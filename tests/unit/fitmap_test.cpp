@@ -592,6 +592,48 @@ TEST(Adaptive, faces_are_smaller_around_a_bump) {
   EXPECT_GT(quality.homeometry_min, 0.01);
 }
 
+// input_fitmaps() before the ReferenceSurface is built (as the CLI and the filters do, to
+// keep the fitmaps' memory and the surface's apart) gives the run simplify_input() makes
+// with its own; the fitmaps given are the ones it runs with, and must be of its vertices.
+TEST(Adaptive, fitmaps_computed_before_the_reference_surface_give_the_same_run) {
+  const TriMesh t =
+      height_field(40, 1.0, [](double x, double y) { return 0.15 * std::exp(-(x * x + y * y) / 0.02); });
+  const Input in = prepare_input(MeshFile{t.positions, t.faces, {}}, "bump");
+  SimplifyParams params;
+  params.adaptive = true;
+  params.target_faces = 150;
+  const Fitmaps fitmaps = input_fitmaps(in, params);
+  ASSERT_EQ(fitmaps.s.size(), in.reference.n_vertices());
+  ASSERT_EQ(fitmaps.m.size(), in.reference.n_vertices());
+  const ReferenceSurface ref(in.reference);
+  Input own = in, given = in, flat = in;
+  simplify_input(own, ref, params);
+  simplify_input(given, ref, params, {}, &fitmaps);
+  ASSERT_EQ(own.quads.n_faces(), 150u);
+  ASSERT_EQ(given.quads.vertex_capacity(), own.quads.vertex_capacity());
+  for (Index v = 0; v < own.quads.vertex_capacity(); ++v) EXPECT_EQ(given.quads.position(v), own.quads.position(v));
+
+  // One S everywhere sizes the quads alike: another run, so the given fitmaps were read.
+  Fitmaps even = fitmaps;
+  std::fill(even.s.begin(), even.s.end(), fitmaps.s[fitmaps.s.size() / 2]);
+  simplify_input(flat, ref, params, {}, &even);
+  int moved = 0;
+  for (Index v = 0; v < own.quads.vertex_capacity(); ++v)
+    moved += own.quads.is_vertex_live(v) != flat.quads.is_vertex_live(v) ||
+             (own.quads.is_vertex_live(v) && own.quads.position(v) != flat.quads.position(v));
+  EXPECT_GT(moved, 0);
+
+  Fitmaps short_one = fitmaps;
+  short_one.m.pop_back();
+  Input run = in;
+  EXPECT_THROW(simplify_input(run, ref, params, {}, &short_one), std::invalid_argument);
+  SimplifyParams uniform;
+  uniform.target_faces = 150;
+  EXPECT_TRUE(input_fitmaps(in, uniform).s.empty());
+  params.tau = 1.5;
+  EXPECT_THROW(input_fitmaps(in, params), std::invalid_argument);
+}
+
 // A cube of flat sides and sharp edges, as CAD solids are: F_S is near 0 far from the
 // edges and large at them, its 20% and 80% quantiles thousands of times apart (2e-4 and
 // 1.0 against a median of 0.14 on a remeshed cube of 45,056 triangles). Clamped to

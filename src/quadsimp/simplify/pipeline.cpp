@@ -83,17 +83,34 @@ SimplifyOptions simplify_options(const SimplifyParams& p, const Fitmaps* fitmaps
   return opt;
 }
 
+namespace {
+
+Fitmaps fitmaps_on(const TriMesh& reference, const SimplifyParams& p, const ProgressFn& progress) {
+  FitmapOptions fo;
+  fo.tau = p.tau;
+  fo.progress = progress;
+  return compute_fitmaps(reference, fo);
+}
+
+}  // namespace
+
+Fitmaps input_fitmaps(const Input& in, const SimplifyParams& p, const ProgressFn& progress) {
+  if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
+  return p.adaptive ? fitmaps_on(in.reference, p, progress) : Fitmaps{};
+}
+
 SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const SimplifyParams& p,
-                              const ProgressFn& progress) {
+                              const ProgressFn& progress, const Fitmaps* fitmaps) {
   if (const std::string why = check_params(p); !why.empty()) throw std::invalid_argument(why);
   SimplifyReport report;
   simplify_levels(in, ref, p, {target_faces_of(p, in.quads.n_faces(), ref.area())},
-                  [&report](std::size_t, const SimplifyReport& r) { report = r; }, progress);
+                  [&report](std::size_t, const SimplifyReport& r) { report = r; }, progress, fitmaps);
   return report;
 }
 
 void simplify_levels(Input& in, const ReferenceSurface& ref, const SimplifyParams& p,
-                     const std::vector<Index>& targets, const LevelFn& level_done, const ProgressFn& progress) {
+                     const std::vector<Index>& targets, const LevelFn& level_done, const ProgressFn& progress,
+                     const Fitmaps* fitmaps) {
   if (targets.empty()) throw std::invalid_argument("no target to simplify to");
   SimplifyParams first = p;  // checked with the first level's target in place of its own
   first.target_faces = targets.front(), first.target_share = 0, first.target_edge = 0;
@@ -101,14 +118,12 @@ void simplify_levels(Input& in, const ReferenceSurface& ref, const SimplifyParam
   for (std::size_t i = 1; i < targets.size(); ++i)
     if (!(targets[i] < targets[i - 1]) || targets[i] == 0)
       throw std::invalid_argument("each level must ask for fewer quads than the one before");
-  Fitmaps fitmaps;
-  if (p.adaptive) {
-    FitmapOptions fo;
-    fo.tau = p.tau;
-    fo.progress = progress;
-    fitmaps = compute_fitmaps(ref.mesh(), fo);
+  Fitmaps own;
+  if (p.adaptive && !fitmaps) {
+    own = fitmaps_on(ref.mesh(), p, progress);
+    fitmaps = &own;
   }
-  SimplifyOptions opt = simplify_options(p, &fitmaps);
+  SimplifyOptions opt = simplify_options(p, fitmaps);
   const Creases creases(ref.mesh(), ref.adjacency(), p.crease_angle);
   opt.creases = &creases;
   opt.progress = progress;

@@ -67,13 +67,23 @@ Index target_faces_of(const SimplifyParams& params, Index quads, double area);
 //! predicted_halting_faces() must be given to predict its halting count.
 SimplifyOptions simplify_options(const SimplifyParams& params, const Fitmaps* fitmaps);
 
-//! The whole job on prepared input: fitmaps on `ref` in adaptive mode, then simplify()
-//! (to target_faces_of() the input's quads), then fit_to_surface() if asked.
-//! `ref` is the reference surface of `in.reference` (the caller keeps it for measuring
-//! the result). `in.quads` is simplified in place. \throw std::invalid_argument for
-//! parameters check_params() refuses; Cancelled when `progress` says stop.
+//! The fitmaps simplify_input() runs with in adaptive mode (none in uniform mode): computed
+//! on `in.reference` with params.tau. Computed before `in.reference` is moved into its
+//! ReferenceSurface, their working memory (about 0.4 kB a triangle) and the surface's are
+//! not held at once: the CLI's adaptive run of 1.1 million triangles peaked at 630 MB with
+//! the fitmaps computed inside simplify_input(), at 485 MB with them computed first
+//! (bench/RESULTS.md, "Fitmaps before the reference surface"). \throw std::invalid_argument
+//! for parameters check_params() refuses; Cancelled when `progress` says stop.
+Fitmaps input_fitmaps(const Input& in, const SimplifyParams& params, const ProgressFn& progress = {});
+
+//! The whole job on prepared input: fitmaps on `ref` in adaptive mode (unless `fitmaps`
+//! gives them: input_fitmaps()), then simplify() (to target_faces_of() the input's quads),
+//! then fit_to_surface() if asked. `ref` is the reference surface of `in.reference` (the
+//! caller keeps it for measuring the result). `in.quads` is simplified in place.
+//! \throw std::invalid_argument for parameters check_params() refuses or fitmaps not of
+//! `ref`'s vertices; Cancelled when `progress` says stop.
 SimplifyReport simplify_input(Input& in, const ReferenceSurface& ref, const SimplifyParams& params,
-                              const ProgressFn& progress = {});
+                              const ProgressFn& progress = {}, const Fitmaps* fitmaps = nullptr);
 
 //! Called after each level of simplify_levels() with its index and report, while in.quads
 //! holds its result.
@@ -89,10 +99,11 @@ using LevelFn = std::function<void(std::size_t level, const SimplifyReport& repo
 //! after 5,000 had an RMS distance 1.4% above separate runs' (median; -24 to +29%) in
 //! uniform mode, and levels of 1,000 and 500 after 2,000 3.0% below (-12 to +0.6%) in
 //! adaptive mode (bench/levels.py; bench/RESULTS.md, "Levels of detail in one run").
-//! \throw std::invalid_argument for parameters check_params() refuses, or targets that do
-//! not decrease; Cancelled when `progress` says stop.
+//! \throw std::invalid_argument for parameters check_params() refuses, targets that do
+//! not decrease, or fitmaps not of `ref`'s vertices; Cancelled when `progress` says stop.
 void simplify_levels(Input& in, const ReferenceSurface& ref, const SimplifyParams& params,
-                     const std::vector<Index>& targets, const LevelFn& level_done, const ProgressFn& progress = {});
+                     const std::vector<Index>& targets, const LevelFn& level_done, const ProgressFn& progress = {},
+                     const Fitmaps* fitmaps = nullptr);
 
 //! "" when the run reached its face target (or was cancelled, or halted automatically by
 //! its rule); otherwise one sentence for the log saying where it stopped and what refused
