@@ -20,11 +20,12 @@ int main(int argc, char** argv) {
     qs::Retriangulate remesh;  // the CLI's --remesh
     if (mode == "remeshed") remesh = [](const qs::TriMesh& surface) { return qs::remesh_isotropic(surface); };
     qs::Input in = qs::load_input(argv[1], {}, {}, remesh);  // cleaned, converted to quads
-    const qs::ReferenceSurface reference(std::move(in.reference));
     qs::SimplifyParams params;
     params.target_faces = qs::Index(std::atoi(argv[3]));
     params.adaptive = mode == "adaptive";
-    const qs::SimplifyReport report = qs::simplify_input(in, reference, params);
+    const qs::Fitmaps fitmaps = qs::input_fitmaps(in, params);  // adaptive mode's; before the surface
+    const qs::ReferenceSurface reference(std::move(in.reference));
+    const qs::SimplifyReport report = qs::simplify_input(in, reference, params, {}, &fitmaps);
     qs::write_quad_mesh(argv[2], in.quads);
     const qs::QuadQuality quality = qs::quad_quality(in.quads, &reference);
     std::printf("%u quads, %.1f%% regular, %u collapses\n", quality.faces, quality.regular_percent,
