@@ -55,16 +55,34 @@ Moments triangle_moments(const Vec3& a, const Vec3& b, const Vec3& c) {
   return m;
 }
 
-// The moments of every triangle about `centre` (working_origin()). The plane fit takes
-// the covariance as second moments minus the mean's square, which cancels digits as the
+// The moments of triangle f about `centre` (working_origin()). The plane fit takes the
+// covariance as second moments minus the mean's square, which cancels digits as the
 // square of (distance from the origin / radius): a plane a million units from the origin
 // (survey coordinates) lost them all and got random fitmaps.
+Moments moments_of(const TriMesh& t, Index f, const Vec3& centre) {
+  const auto& v = t.faces[f];
+  return triangle_moments(t.positions[v[0]] - centre, t.positions[v[1]] - centre, t.positions[v[2]] - centre);
+}
+
+// Where the cells place triangle f: its centroid about `centre`, as its moments' first
+// moment over its area (the same arithmetic as triangle_moments(), so the same bits). A
+// triangle of no area takes its corners' mean, about `centre` too (it once took the
+// origin's frame, and so another cell, when the mesh lay far from it).
+Vec3 centroid_of(const TriMesh& t, Index f, const Vec3& centre) {
+  const auto& v = t.faces[f];
+  const Vec3 a = t.positions[v[0]] - centre, b = t.positions[v[1]] - centre, c = t.positions[v[2]] - centre;
+  const double area = 0.5 * (b - a).cross(c - a).norm();
+  const Vec3 s = a + b + c;
+  return area > 0 ? Vec3(area * s / 3.0 / area) : Vec3(s / 3.0);
+}
+
+// Every triangle's moments, for the exact balls, which read each many times. The cells
+// sum theirs anew (build_cells()), so the array is dropped before the cell levels: beside a
+// level's cells it made the fitmaps' peak (112 bytes a triangle; bench/RESULTS.md,
+// "Fitmaps before the reference surface").
 std::vector<Moments> moments_about(const TriMesh& t, const Vec3& centre) {
   std::vector<Moments> tm(t.n_faces());
-  for (Index f = 0; f < t.n_faces(); ++f) {
-    const auto& v = t.faces[f];
-    tm[f] = triangle_moments(t.positions[v[0]] - centre, t.positions[v[1]] - centre, t.positions[v[2]] - centre);
-  }
+  parallel_for_as_here(Index(0), t.n_faces(), [&](Index f) { tm[f] = moments_of(t, f, centre); });
   return tm;
 }
 
@@ -182,26 +200,39 @@ struct CellLevel {
   std::vector<double> against;  // area facing against the cell's own mean normal
 };
 
-CellLevel build_cells(const TriMesh& t, const std::vector<Moments>& tm,
-                      const std::vector<std::array<Index, 3>>& tri_adj, double size) {
+CellLevel build_cells(const TriMesh& t, const Vec3& centre, const std::vector<std::array<Index, 3>>& tri_adj,
+                      double size) {
   std::vector<Vec3> centroid(t.n_faces());
-  for (Index f = 0; f < t.n_faces(); ++f)
-    centroid[f] = tm[f].area > 0 ? Vec3(tm[f].first / tm[f].area)
-                                 : Vec3((t.positions[t.faces[f][0]] + t.positions[t.faces[f][1]] +
-                                         t.positions[t.faces[f][2]]) / 3.0);
+  parallel_for_as_here(Index(0), t.n_faces(), [&](Index f) { centroid[f] = centroid_of(t, f, centre); });
   CellLevel L;
   L.grid = detail::cluster_triangles(centroid, tri_adj, size);
   const detail::CellGrid& grid = L.grid;
   const Index nc = grid.n_cells();
+  // Each cell's triangles in id order, the order its sums took when made in one loop over
+  // the triangles: summed cell by cell in parallel, they come out the same to the bit.
+  std::vector<Index> first(nc + 1, 0), members(t.n_faces());
+  for (Index c : grid.cell_of_triangle) ++first[c + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<Index> fill(first.begin(), first.end() - 1);
+  for (Index f = 0; f < t.n_faces(); ++f) members[fill[grid.cell_of_triangle[f]]++] = f;
   L.moments.resize(nc);
-  for (Index f = 0; f < t.n_faces(); ++f) L.moments[grid.cell_of_triangle[f]].add(tm[f]);
   L.centre.resize(nc);
   L.against.assign(nc, 0.0);
-  for (Index c = 0; c < nc; ++c) L.centre[c] = L.moments[c].first / std::max(L.moments[c].area, 1e-300);
-  for (Index f = 0; f < t.n_faces(); ++f) {
-    const Index c = grid.cell_of_triangle[f];
-    if (tm[f].normal.dot(L.moments[c].normal) <= 0) L.against[c] += tm[f].area;
-  }
+  tbb::enumerable_thread_specific<std::vector<std::pair<Vec3, double>>> facing;  // a cell's normals and areas
+  parallel_for_as_here(Index(0), nc, [&](Index c) {
+    auto& own = facing.local();
+    own.clear();
+    Moments sum;
+    for (Index i = first[c]; i < first[c + 1]; ++i) {
+      const Moments m = moments_of(t, members[i], centre);
+      sum.add(m);
+      own.emplace_back(m.normal, m.area);
+    }
+    L.moments[c] = sum;
+    L.centre[c] = sum.first / std::max(sum.area, 1e-300);
+    for (const auto& [normal, area] : own)
+      if (normal.dot(sum.normal) <= 0) L.against[c] += area;
+  });
   return L;
 }
 
@@ -365,7 +396,7 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
   const Index nv = t.n_vertices(), nl = Index(radii.size());
   const Incidence inc(t);
   const Vec3 centre = working_origin(t.positions);  // cell balls take points about it too
-  const std::vector<Moments> tm = moments_about(t, centre);
+  std::vector<Moments> tm = moments_about(t, centre);
   std::vector<double> error(std::size_t(nv) * nl, 0), frac(std::size_t(nv) * nl, 0);
   std::vector<char> ok(std::size_t(nv) * nl, 0);
   tbb::enumerable_thread_specific<Scratch> scratch;
@@ -387,7 +418,8 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
         ok[k] = exact_ball(t, inc, tm, v, r, scratch.local(), error[k], frac[k]);
       });
     } else {
-      const CellLevel L = build_cells(t, tm, adj, r / opt.cells_per_radius);
+      std::vector<Moments>().swap(tm);  // the cells sum their own
+      const CellLevel L = build_cells(t, centre, adj, r / opt.cells_per_radius);
       for (auto& s : scratch) s.mark.clear();
       // The vertices still needed, grouped by the cell their search starts from.
       const Index nc = Index(L.moments.size());
