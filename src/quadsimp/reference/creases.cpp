@@ -116,6 +116,9 @@ void Creases::chain(const TriMesh& mesh, const std::vector<std::array<Index, 3>>
       if (adjacency[f][k] == kNone) border[from(e)] = border[to(e)] = 1;
       if (crease[e] && canonical(f, k)) ++start[from(e) + 1], ++start[to(e) + 1], ++edges_;
     }
+  // None (every run without a crease angle): empty() answers every query, and the arrays
+  // below would be 30 bytes a triangle of kNone.
+  if (edges_ == 0) return;
   for (Index v = 0; v < nv; ++v) start[v + 1] += start[v];
   edges.resize(start[nv]);
   std::vector<Index> fill(start.begin(), start.end() - 1);

@@ -40,6 +40,10 @@ struct Entry {
   Index face() const { return slot >> 1; }
   Index k() const { return slot & 1; }
 };
+// The heap is rebuilt (its stale entries dropped, every live face keyed again) once it
+// holds more than kHeapPerFace entries a face and kHeapExtra (Simplifier::upkeep()).
+inline constexpr std::size_t kHeapPerFace = 16, kHeapExtra = 1024;
+
 struct LaterFirst {  // makes std::*_heap a min-heap, ties broken by ids
   bool operator()(const Entry& a, const Entry& b) const {
     if (a.key != b.key) return a.key > b.key;
