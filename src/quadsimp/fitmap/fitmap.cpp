@@ -79,7 +79,7 @@ Vec3 centroid_of(const TriMesh& t, Index f, const Vec3& centre) {
 // Every triangle's moments, for the exact balls, which read each many times. The cells
 // sum theirs anew (build_cells()), so the array is dropped before the cell levels: beside a
 // level's cells it made the fitmaps' peak (112 bytes a triangle; bench/RESULTS.md,
-// "Fitmaps before the reference surface").
+// "Peak memory of large runs").
 std::vector<Moments> moments_about(const TriMesh& t, const Vec3& centre) {
   std::vector<Moments> tm(t.n_faces());
   parallel_for_as_here(Index(0), t.n_faces(), [&](Index f) { tm[f] = moments_of(t, f, centre); });

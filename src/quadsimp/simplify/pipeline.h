@@ -69,10 +69,10 @@ SimplifyOptions simplify_options(const SimplifyParams& params, const Fitmaps* fi
 
 //! The fitmaps simplify_input() runs with in adaptive mode (none in uniform mode): computed
 //! on `in.reference` with params.tau. Computed before `in.reference` is moved into its
-//! ReferenceSurface, their working memory (about 0.4 kB a triangle) and the surface's are
+//! ReferenceSurface, their working memory (about 0.3 kB a triangle) and the surface's are
 //! not held at once: the CLI's adaptive run of 1.1 million triangles peaked at 630 MB with
 //! the fitmaps computed inside simplify_input(), at 485 MB with them computed first
-//! (bench/RESULTS.md, "Fitmaps before the reference surface"). \throw std::invalid_argument
+//! (bench/RESULTS.md, "Peak memory of large runs"). \throw std::invalid_argument
 //! for parameters check_params() refuses; Cancelled when `progress` says stop.
 Fitmaps input_fitmaps(const Input& in, const SimplifyParams& params, const ProgressFn& progress = {});
 
