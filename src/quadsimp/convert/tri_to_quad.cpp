@@ -1,14 +1,17 @@
 // quadsimp: adaptive quad mesh simplification. SPDX-License-Identifier: GPL-3.0-or-later
 #include "quadsimp/convert/tri_to_quad.h"
 
-#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <boost/graph/max_cardinality_matching.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <tuple>
+#include <utility>
 
 #include "quadsimp/reference/creases.h"
 #include "quadsimp/util/errors.h"
@@ -389,14 +392,29 @@ Index augment(Index u, const std::vector<std::array<Index, 3>>& adj, std::vector
 // (whose pairing always exists) unpaired in about one copy in ten, and the refinement
 // that followed made four times the quads. It runs only when something is left, so the
 // conversions of clean inputs keep the pairs they had (bench/RESULTS.md, "Noisy scans").
+// The graph is Boost's compressed rows with 32-bit ids, its out-edges per triangle in the
+// order an adjacency_list built by add_edge() for each triangle and each later neighbour
+// gives them (from its earlier neighbours, then to its later ones), so the search makes the
+// same steps and pairs: an adjacency_list (a vector of edges a vertex, a list of all edges)
+// and the finder's arrays of 64-bit ids took 1.1 GB of a run's 1.68 GB peak on 4.5 million
+// triangles (bench/RESULTS.md, "Peak memory of large runs").
 Index pair_through_blossoms(const std::vector<std::array<Index, 3>>& adj, std::vector<Index>& mate) {
-  using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS>;
+  using Graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, boost::no_property,
+                                                   boost::no_property, std::uint32_t, std::uint32_t>;
   using Vertex = boost::graph_traits<Graph>::vertex_descriptor;
   const Index n = Index(adj.size());
-  Graph g(n);
-  for (Index f = 0; f < n; ++f)
-    for (Index h : adj[f])
-      if (h != kNone && f < h) boost::add_edge(f, h, g);
+  const Graph g = [&] {
+    std::vector<std::uint32_t> at(n + 1, 0);  // then each source's next slot
+    for (Index f = 0; f < n; ++f)
+      for (Index h : adj[f])
+        if (h != kNone && f < h) ++at[f + 1], ++at[h + 1];
+    std::partial_sum(at.begin(), at.end(), at.begin());
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges(at[n]);
+    for (Index f = 0; f < n; ++f)
+      for (Index h : adj[f])
+        if (h != kNone && f < h) edges[at[f]++] = {f, h}, edges[at[h]++] = {h, f};
+    return Graph(boost::edges_are_sorted, edges.begin(), edges.end(), n);
+  }();
   const Vertex none = boost::graph_traits<Graph>::null_vertex();
   std::vector<Vertex> partner(n);
   for (Index f = 0; f < n; ++f) partner[f] = mate[f] == kNone ? none : Vertex(mate[f]);
