@@ -40,4 +40,5 @@ check fixed_counts armadillo 4 --both-args=--keep-tips
 check meshlab_quadric moai 15 --python "$python"
 check open_scans face 1 --python "$python" --counts
 check cad_parts cube 2 --python "$python" --counts 300
+check peak_memory moai 4 --python "$python" --splits 0 --faces 300
 [ "$failures" = 0 ]
