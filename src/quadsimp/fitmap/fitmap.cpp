@@ -33,12 +33,29 @@ struct Moments {
   }
 };
 
+// A triangle's area normal (the edges' cross product), area, corner sum and first moment:
+// what its moments and the cells' centroid (centroid_of()) are made from, made here once
+// so that both keep the same bits.
+struct TriangleBasics {
+  Vec3 n, s, first;
+  double area;
+};
+TriangleBasics triangle_basics(const Vec3& a, const Vec3& b, const Vec3& c) {
+  TriangleBasics t;
+  t.n = (b - a).cross(c - a);
+  t.area = 0.5 * t.n.norm();
+  t.s = a + b + c;
+  t.first = t.area * t.s / 3.0;
+  return t;
+}
+
 Moments triangle_moments(const Vec3& a, const Vec3& b, const Vec3& c) {
   Moments m;
-  const Vec3 n = (b - a).cross(c - a);
-  m.area = 0.5 * n.norm();
-  const Vec3 s = a + b + c;
-  m.first = m.area * s / 3.0;
+  const TriangleBasics t = triangle_basics(a, b, c);
+  const Vec3& n = t.n;
+  const Vec3& s = t.s;
+  m.area = t.area;
+  m.first = t.first;
   // Integral of x x^T over a triangle: A/12 (a a^T + b b^T + c c^T + s s^T).
   const double w = m.area / 12.0;
   auto outer = [&](const Vec3& x) {
@@ -64,16 +81,34 @@ Moments moments_of(const TriMesh& t, Index f, const Vec3& centre) {
   return triangle_moments(t.positions[v[0]] - centre, t.positions[v[1]] - centre, t.positions[v[2]] - centre);
 }
 
-// Where the cells place triangle f: its centroid about `centre`, as its moments' first
-// moment over its area (the same arithmetic as triangle_moments(), so the same bits). A
-// triangle of no area takes its corners' mean, about `centre` too (it once took the
-// origin's frame, and so another cell, when the mesh lay far from it).
+// Where the cells place triangle f: its centroid about `centre`, its first moment over its
+// area, without the second moments. A triangle of no area takes its corners' mean, about
+// `centre` too (it once took the origin's frame, and so another cell, when the mesh lay
+// far from it).
 Vec3 centroid_of(const TriMesh& t, Index f, const Vec3& centre) {
   const auto& v = t.faces[f];
-  const Vec3 a = t.positions[v[0]] - centre, b = t.positions[v[1]] - centre, c = t.positions[v[2]] - centre;
-  const double area = 0.5 * (b - a).cross(c - a).norm();
-  const Vec3 s = a + b + c;
-  return area > 0 ? Vec3(area * s / 3.0 / area) : Vec3(s / 3.0);
+  const TriangleBasics b =
+      triangle_basics(t.positions[v[0]] - centre, t.positions[v[1]] - centre, t.positions[v[2]] - centre);
+  return b.area > 0 ? Vec3(b.first / b.area) : Vec3(b.s / 3.0);
+}
+
+// Items 0..n-1 grouped by key(i) in [0, groups) (kNone: left out), each group in id order,
+// as compressed rows: group g is items[start[g] .. start[g + 1]).
+struct Buckets {
+  std::vector<Index> start, items;
+};
+template <class Key>
+Buckets bucket_by(Index groups, Index n, const Key& key) {
+  Buckets b;
+  b.start.assign(groups + 1, 0);
+  for (Index i = 0; i < n; ++i)
+    if (const Index k = key(i); k != kNone) ++b.start[k + 1];
+  std::partial_sum(b.start.begin(), b.start.end(), b.start.begin());
+  b.items.resize(b.start.back());
+  std::vector<Index> fill(b.start.begin(), b.start.end() - 1);
+  for (Index i = 0; i < n; ++i)
+    if (const Index k = key(i); k != kNone) b.items[fill[k]++] = i;
+  return b;
 }
 
 // Every triangle's moments, for the exact balls, which read each many times. The cells
@@ -210,11 +245,7 @@ CellLevel build_cells(const TriMesh& t, const Vec3& centre, const std::vector<st
   const Index nc = grid.n_cells();
   // Each cell's triangles in id order, the order its sums took when made in one loop over
   // the triangles: summed cell by cell in parallel, they come out the same to the bit.
-  std::vector<Index> first(nc + 1, 0), members(t.n_faces());
-  for (Index c : grid.cell_of_triangle) ++first[c + 1];
-  std::partial_sum(first.begin(), first.end(), first.begin());
-  std::vector<Index> fill(first.begin(), first.end() - 1);
-  for (Index f = 0; f < t.n_faces(); ++f) members[fill[grid.cell_of_triangle[f]]++] = f;
+  const Buckets in_cell = bucket_by(nc, t.n_faces(), [&](Index f) { return grid.cell_of_triangle[f]; });
   L.moments.resize(nc);
   L.centre.resize(nc);
   L.against.assign(nc, 0.0);
@@ -223,8 +254,8 @@ CellLevel build_cells(const TriMesh& t, const Vec3& centre, const std::vector<st
     auto& own = facing.local();
     own.clear();
     Moments sum;
-    for (Index i = first[c]; i < first[c + 1]; ++i) {
-      const Moments m = moments_of(t, members[i], centre);
+    for (Index i = in_cell.start[c]; i < in_cell.start[c + 1]; ++i) {
+      const Moments m = moments_of(t, in_cell.items[i], centre);
       sum.add(m);
       own.emplace_back(m.normal, m.area);
     }
@@ -423,17 +454,11 @@ Fitmaps compute(const TriMesh& t, const FitmapOptions& opt, bool smooth) {
       for (auto& s : scratch) s.mark.clear();
       // The vertices still needed, grouped by the cell their search starts from.
       const Index nc = Index(L.moments.size());
-      std::vector<Index> first(nc + 1, 0), members;
-      const auto start_of = [&](Index v) { return L.grid.cell_of_triangle[inc.vt[inc.vt_start[v]]]; };
-      for (Index v = 0; v < nv; ++v)
-        if (needed(v, i)) ++first[start_of(v) + 1];
-      std::partial_sum(first.begin(), first.end(), first.begin());
-      members.resize(first.back());
-      std::vector<Index> fill(first.begin(), first.end() - 1);
-      for (Index v = 0; v < nv; ++v)
-        if (needed(v, i)) members[fill[start_of(v)]++] = v;
+      const Buckets starting = bucket_by(
+          nc, nv, [&](Index v) { return needed(v, i) ? L.grid.cell_of_triangle[inc.vt[inc.vt_start[v]]] : kNone; });
       parallel_for_as_here(Index(0), nc, [&](Index c) {
-        const Index *group = members.data() + first[c], *end = members.data() + first[c + 1];
+        const Index *group = starting.items.data() + starting.start[c],
+                    *end = starting.items.data() + starting.start[c + 1];
         cell_balls(L, c, group, end - group, t, centre, r, opt.share_cell_searches, scratch.local(),
                    [&](std::size_t m, bool good, double e, double f) {
                      const std::size_t k = std::size_t(group[m]) * nl + i;

@@ -171,7 +171,8 @@ void Simplifier::rebuild_heap() {
   // Room for what upkeep() lets the heap grow to, so that it never moves: grown by
   // doubling, each move held the old entries beside the new (151 MB at the peak of an
   // adaptive run of 1.1 M triangles, whose heap holds 100 MB). Room never written takes
-  // no memory. Later rebuilds, with fewer faces, find it there.
+  // no memory. Later rebuilds, with fewer faces, find it there. The margin is for the
+  // entries one collapse's requeue adds past the check (two a face of its region).
   heap_.reserve(kHeapPerFace * std::size_t(m_.n_faces()) + kHeapExtra + 4096);
   for (Index f = 0; f < m_.face_capacity(); ++f)
     if (m_.is_face_live(f)) {
