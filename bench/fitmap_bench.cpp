@@ -3,13 +3,15 @@
 // 1.1-million-triangle mesh made by splitting every bunny triangle into four, twice.
 // The bunny run also reports the median and 90th percentile of the relative difference
 // to the brute-force reference at every 97th vertex. The tips (`--keep-tips`) of the 1.1M
-// mesh at the scales of 500, 5,000 and 50,000 quads.
+// mesh at the scales of 500, 5,000 and 50,000 quads. Each reports its peak memory
+// (peak_rss.h), the meshes they read included.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 
+#include "peak_rss.h"
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/fitmap/tips.h"
 #include "quadsimp/io/load_input.h"
@@ -34,8 +36,10 @@ double quantile(std::vector<double> v, double q) {
 void BM_FitmapsBunny(benchmark::State& state) {
   if (!std::ifstream(kBunny)) return state.SkipWithError("glmark2-data's bunny.obj is not installed");
   const qs::TriMesh t = qs::load_input(kBunny).reference;
+  const bool reset = qs_bench::reset_peak_rss();
   qs::Fitmaps fast;
   for (auto _ : state) fast = qs::compute_fitmaps_unsmoothed(t);
+  qs_bench::report_peak(state, reset);  // before the brute force's own
   std::vector<qs::Index> sample;
   for (qs::Index v = 0; v < t.n_vertices(); v += 97) sample.push_back(v);
   const qs::Fitmaps ref = qs::fitmaps_brute_force(t, sample);
@@ -55,17 +59,21 @@ void BM_FitmapsBunny(benchmark::State& state) {
 void BM_Fitmaps1M(benchmark::State& state) {
   if (!std::ifstream(kBunny)) return state.SkipWithError("glmark2-data's bunny.obj is not installed");
   const qs::TriMesh& t = bunny_1m();
+  const bool reset = qs_bench::reset_peak_rss();
   for (auto _ : state) benchmark::DoNotOptimize(qs::compute_fitmaps(t).s.data());
   state.counters["triangles"] = t.n_faces();
+  qs_bench::report_peak(state, reset);
 }
 
 void BM_Tips1M(benchmark::State& state) {
   if (!std::ifstream(kBunny)) return state.SkipWithError("glmark2-data's bunny.obj is not installed");
   const qs::TriMesh& t = bunny_1m();
   const qs::TipOptions o = qs::tip_options_for(t, double(state.range(0)));  // as the loop sets them
+  const bool reset = qs_bench::reset_peak_rss();
   std::size_t found = 0;
   for (auto _ : state) found = qs::find_tips(t, o).size();
   state.counters["triangles"] = t.n_faces();
+  qs_bench::report_peak(state, reset);
   state.counters["tips"] = double(found);
 }
 

@@ -3,14 +3,14 @@
 // down to 5,000 quads on one thread (load + clean + convert + BVH + simplify, with the
 // default two passes per collapse and with --fast's one), and adaptive with automatic
 // halting on both cores, fitmaps included, as `quadsimp simplify --adaptive --auto-halt`
-// runs it. Reports collapses per second and the process's peak memory.
+// runs it. Reports collapses per second and each benchmark's peak memory (peak_rss.h).
 #include <benchmark/benchmark.h>
-#include <sys/resource.h>
 #include <tbb/global_control.h>
 
 #include <fstream>
 #include <string>
 
+#include "peak_rss.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/reference/reference_surface.h"
 #include "quadsimp/simplify/pipeline.h"
@@ -21,18 +21,13 @@ namespace {
 const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
 const char* kBunnyPly = QS_SHARED_DATASETS "/bunny.ply";  // the paper's Tables 2 and 3 bunny
 
-double peak_rss_mib() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
-}
-
 void BM_BunnyTo5000(benchmark::State& state) {
   if (!std::ifstream(kBunny)) {
     state.SkipWithError("glmark2-data's bunny.obj is not installed");
     return;
   }
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  const bool reset = qs_bench::reset_peak_rss();
   qs::SimplifyReport last;
   for (auto _ : state) {
     qs::Input in = qs::load_input(kBunny);
@@ -46,7 +41,7 @@ void BM_BunnyTo5000(benchmark::State& state) {
   state.counters["collapses_per_s"] = last.collapses / last.seconds;
   state.counters["simplify_s"] = last.seconds;
   state.counters["faces"] = last.faces;
-  state.counters["peak_MiB"] = peak_rss_mib();
+  qs_bench::report_peak(state, reset);
 }
 
 // Arguments: target faces, rotation/smoothing passes per collapse (2: default, 1: --fast).
@@ -60,6 +55,7 @@ void BM_BunnyAdaptive(benchmark::State& state) {
   qs::SimplifyParams params;
   params.adaptive = true;
   params.auto_halt = true;
+  const bool reset = qs_bench::reset_peak_rss();
   qs::SimplifyReport last;
   for (auto _ : state) {
     qs::Input in = qs::load_input(path);
@@ -70,7 +66,7 @@ void BM_BunnyAdaptive(benchmark::State& state) {
   }
   state.counters["loop_s"] = last.seconds;
   state.counters["faces"] = last.faces;
-  state.counters["peak_MiB"] = peak_rss_mib();
+  qs_bench::report_peak(state, reset);
 }
 
 BENCHMARK(BM_BunnyAdaptive)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
