@@ -13,20 +13,37 @@
 # with `build-fuzz/tests/fuzz/TARGET FILE`.
 # The corpora grow in build-fuzz/corpus/CAMPAIGN/ and a later run goes on from them; the
 # fuzzers' logs are in build-fuzz/logs/CAMPAIGN/. Needs scripts/setup.sh's packages, and
-# Debian's clang (libFuzzer), which it installs when missing.
+# Debian's clang and its runtime libraries (libFuzzer), which it installs when missing.
 #
 #   scripts/fuzz.sh [SECONDS] [CAMPAIGN...]    CAMPAIGN: ply obj off stl image simplify
+#   scripts/fuzz.sh --smoke
+#
+# --smoke is the suite's short run (ctest's fuzz_smoke, about four minutes on 2 cores):
+# every campaign once, one fuzzer each, from the seeds alone (a fresh corpus, not
+# build-fuzz/corpus/), for a fixed number of inputs: 100,000 for a reader, 2,000 for the
+# whole run. It cannot replace the campaigns, but a change that breaks a reader on its
+# seeds' near neighbours fails the suite. Two runs are not the same inputs (one seed gave
+# two coverages): a finding is kept in build-fuzz/smoke-findings/ to replay. Exits 77
+# (skipped) where clang is missing and cannot be installed.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="$here/build-fuzz"
-seconds=${1:-300}
-shift || true
+smoke=0
+[ "${1:-}" != --smoke ] || { smoke=1; shift; }
+seconds=300
+[ $smoke = 1 ] || { seconds=${1:-300}; shift || true; }
 campaigns=("$@")
 [ ${#campaigns[@]} -gt 0 ] || campaigns=(ply obj off stl image simplify)
-if ! command -v clang++ >/dev/null; then  # libFuzzer comes with Debian's clang
-  [ "$(id -u)" = 0 ] || { echo "fuzz: clang++ not found; as root: apt-get install clang" >&2; exit 1; }
-  echo "fuzz: installing Debian's clang (libFuzzer)"
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends clang >/dev/null
+runtime() { clang++ -print-file-name=libclang_rt.fuzzer-x86_64.a; }
+if ! command -v clang++ >/dev/null || [ ! -f "$(runtime)" ]; then  # libFuzzer: Debian's clang runtime
+  if [ "$(id -u)" != 0 ]; then
+    echo "fuzz: clang++ or libFuzzer not found; as root: apt-get install clang libclang-rt-dev" >&2
+    exit $((smoke ? 77 : 1))
+  fi
+  echo "fuzz: installing Debian's clang and its runtime (libFuzzer)"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get install -y -qq --no-install-recommends clang libclang-rt-dev >/dev/null 2>&1 \
+    || { apt-get update -qq && apt-get install -y -qq --no-install-recommends clang libclang-rt-dev >/dev/null; }
 fi
 
 flags="-O1 -g -fsanitize=address,undefined,fuzzer-no-link -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
@@ -47,6 +64,30 @@ for c in "${campaigns[@]}"; do
   esac
   dict=()  # the mesh formats' keywords
   [ "$c" = image ] || dict=(-dict="$here/tests/fuzz/mesh.dict")
+  limits=(-timeout=20 -rss_limit_mb=4096 -malloc_limit_mb=2048 -max_len="$max_len" -use_value_profile=1)
+  if [ $smoke = 1 ]; then
+    runs=100000
+    [ "$c" != simplify ] || runs=2000
+    findings="$build/smoke-findings/$c"
+    rm -rf "$findings" "$build/smoke-corpus/$c"
+    mkdir -p "$findings" "$build/smoke-corpus/$c"
+    echo "fuzz: $c ($target), $runs inputs from the seeds"
+    log="$build/smoke-findings/$c.log"
+    ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 "$build/tests/fuzz/$target" \
+      "$build/smoke-corpus/$c" "$seeds" -seed=1 -runs="$runs" "${limits[@]}" "${dict[@]}" \
+      -artifact_prefix="$findings/" >"$log" 2>&1 || true
+    grep -E '^#[0-9]+' "$log" | tail -1
+    found=$(find "$findings" -type f | wc -l)
+    if [ "$found" != 0 ] || ! grep -qE '^#[0-9]+[[:space:]]+DONE' "$log"; then
+      echo "fuzz: $c: $found finding(s), replay with: $build/tests/fuzz/$target FILE"
+      find "$findings" -type f
+      tail -40 "$log"
+      status=1
+    else
+      rm -rf "$build/smoke-corpus/$c"
+    fi
+    continue
+  fi
   mkdir -p "$build/corpus/$c" "$build/findings/$c" "$build/logs/$c"
   rm -f "$build/logs/$c"/fuzz-*.log  # an earlier run's, on more cores, would be read as this one's
   echo "fuzz: $c ($target) for $seconds s"
@@ -57,8 +98,7 @@ for c in "${campaigns[@]}"; do
   # runs), and not in 222,000 runs of -fork.
   (cd "$build/logs/$c" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     "$build/tests/fuzz/$target" "$build/corpus/$c" "$seeds" -jobs="$(nproc)" -workers="$(nproc)" \
-    -max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 -malloc_limit_mb=2048 -max_len="$max_len" \
-    "${dict[@]}" -use_value_profile=1 -artifact_prefix="$build/findings/$c/" \
+    -max_total_time="$seconds" "${limits[@]}" "${dict[@]}" -artifact_prefix="$build/findings/$c/" \
     >/dev/null 2>&1) || true
   for log in "$build/logs/$c"/fuzz-*.log; do
     grep -E '^#[0-9]+' "$log" | tail -1
