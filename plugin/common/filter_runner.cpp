@@ -31,6 +31,9 @@ void describe_input(const Input& in, const std::string& name, Outcome& o) {
                                 double(r.parity_splits + r.border_splits)) +
                   (r.rim_splits ? format(", %g cone rims split", r.rim_splits) : "") +
                   (r.refined ? ", refined once" : ""));
+  if (r.mended || r.not_mended)
+    o.log.push_back(name + format(": %g quads non-convex or bent over %g degrees, after %g re-paired", r.not_mended,
+                                  ConvertOptions().max_dihedral_deg, r.mended));
 }
 
 // The prepared (and simplified) input's quads, each split as MeshLab will draw it, with the
@@ -85,7 +88,9 @@ LayerQuads run_conversion(MeshFile layer, const std::string& name, double crease
   params.target_faces = 1;
   params.crease_angle = crease_angle;
   if (const std::string why = check_params(params); !why.empty()) throw std::invalid_argument(why);
-  Input in = prepare_input(std::move(layer), name, convert_options(params), log_into(o));
+  ConvertOptions options = convert_options(params);
+  options.convex_pairs = true;  // the quads are the result here
+  Input in = prepare_input(std::move(layer), name, options, log_into(o));
   describe_input(in, name, o);
   o.values = {{"faces", in.quads.n_faces()}, {"pairing_rate", in.convert.pairing_rate()}};
   return quads_of(in, images, texture_size, o);

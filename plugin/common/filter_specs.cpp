@@ -48,8 +48,10 @@ const std::vector<FilterSpec>& filter_specs() {
            kCitation},
       {kConvert, "Convert to Pure Quad Mesh", "meshing_tri_to_pure_quad",
        "Turns a triangle mesh into a <b>pure quad mesh</b> without moving any vertex: triangles are paired "
-       "greedily into the best-shaped quads, every leftover is re-paired along the shortest alternating path, and "
-       "where no complete pairing exists a border edge is split at its midpoint; with a <b>Crease angle</b>, no "
+       "greedily into the best-shaped quads, every leftover is re-paired along an alternating path (through "
+       "convex pairs where there is one), pairs left non-convex or bent by more than 60 degrees are re-paired "
+       "where convex pairs can take their place (the log counts those left), and where no complete pairing "
+       "exists a border edge is split at its midpoint; with a <b>Crease angle</b>, no "
        "triangles are paired across an edge sharper than it. The input is cleaned first (duplicate vertices, "
        "degenerate and duplicate faces, unreferenced vertices; cracks of T-junctions, and the slits faces of no "
        "area leave, closed; at an edge with more than two faces, all but the two across which the surface runs on "

@@ -220,6 +220,7 @@ int run_convert(const ConvertArgs& a) {
     const LogFn log = stderr_log(a.quiet);
     ConvertOptions options;
     options.crease_angle_deg = a.crease_angle;
+    options.convex_pairs = true;  // the quads are the result here
     Input in = load_input(a.input, options, log, remesher(a.remesh, a.crease_angle, 0, 0, a.input, log));
     if (const std::string why = texture_clash(a.output, in); !why.empty()) {
       std::cerr << "quadsimp convert: " << why << "\n";
@@ -238,11 +239,11 @@ int run_convert(const ConvertArgs& a) {
                              : "";
       const std::string rims = r.rim_splits ? "; cone rims split: " + std::to_string(r.rim_splits) : "";
       std::printf(
-          "%s: %u triangles -> %u quads (paired %.2f%%: greedy %u, re-paired %u; border splits: %u parity, %u "
-          "unmatchable%s%s%s), written to %s (%.2f s)\n",
+          "%s: %u triangles -> %u quads (paired %.2f%%: greedy %u, re-paired %u; %u non-convex or bent over %g "
+          "degrees, after %u re-paired; border splits: %u parity, %u unmatchable%s%s%s), written to %s (%.2f s)\n",
           a.input.c_str(), r.input_triangles, r.quads, 100.0 * r.pairing_rate(), r.paired_greedy, r.paired_augmented,
-          r.parity_splits, r.border_splits, creases.c_str(), rims.c_str(), r.refined ? "; refined once" : "",
-          a.output.c_str(), s);
+          r.not_mended, options.max_dihedral_deg, r.mended, r.parity_splits, r.border_splits, creases.c_str(),
+          rims.c_str(), r.refined ? "; refined once" : "", a.output.c_str(), s);
     }
     return kOk;
   } catch (const InvalidInput& e) {

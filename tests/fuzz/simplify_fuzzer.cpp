@@ -2,7 +2,8 @@
 // libFuzzer target: a small mesh file is loaded (cleaned, converted) and simplified with
 // options its first two bytes choose, and measured as the CLI measures it: the result must
 // pass validate(), its vertices and distances be finite, its report say its count, a
-// second run give the same quads, and a textured input's texture be baked onto them.
+// second run give the same quads, and a textured input's texture be baked onto them; the
+// conversion filter's pairing of the same triangles must be sound too.
 // Refusing the file (InvalidInput) is fine; any other exception, a TopologyError above
 // all, a crash, a sanitizer report or a hang is a bug.
 // The meshes are small (odd geometry, not size, is what breaks operators), so each input
@@ -10,6 +11,7 @@
 #include <cmath>
 
 #include "fuzz_input.h"
+#include "quadsimp/convert/tri_to_quad.h"
 #include "quadsimp/io/images.h"
 #include "quadsimp/io/load_input.h"
 #include "quadsimp/metrics/metrics.h"
@@ -56,6 +58,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   if (in.quads.n_faces() > 2000) return 0;
+  // The conversion filter's pairing of the same triangles (ConvertOptions::convex_pairs): a
+  // sound mesh, as many quads where both pairings pair every triangle the same way.
+  if (!in.was_pure_quad) {
+    qs::ConvertOptions options = qs::convert_options(params);
+    options.convex_pairs = true;
+    qs::ConvertReport convex;
+    const qs::QuadMesh q = qs::tri_to_quad(in.reference, options, &convex);
+    qs::validate(q);
+    require(convex.refined || convex.border_splits != in.convert.border_splits || in.convert.refined ||
+                q.n_faces() == in.quads.n_faces(),
+            "the convex pairing made another number of quads");
+  }
   if (!params.auto_halt) params.target_faces = 1 + (mode >> 4) * in.quads.n_faces() / 16;
   // Every eighth input (by size) is simplified twice: the same quads, bit for bit, though
   // the fitmaps and the distances run on TBB's threads.

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <random>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -29,6 +30,7 @@
 #include "layer_conversion.h"
 #include "quadsimp/fitmap/fitmap.h"
 #include "quadsimp/mesh/clean.h"
+#include "quadsimp/metrics/metrics.h"
 #include "quadsimp/reference/reference_surface.h"
 #include "quadsimp/texture/texture_bake.h"
 #include "quadsimp/util/errors.h"
@@ -691,6 +693,26 @@ TEST(PluginRunner, the_texture_size_bounds_the_quads_texture) {
   ASSERT_FALSE(converted.texture.empty());
   EXPECT_GT(side(run_conversion(layer, "ball", 0, o, {card})), 64);
   EXPECT_LE(side(converted), 64);
+}
+
+// The conversion filter's quads are its result, as `quadsimp convert`'s are: pairs greedy
+// pairing would not make are re-paired where the pairing allows, and the log says how many
+// are left. The simplification starts from the plain pairing, as the CLI's does.
+TEST(PluginRunner, the_conversion_keeps_its_quads_convex_where_it_can) {
+  TriMesh t = tri_sphere(24, 36);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> jitter(-0.04, 0.04);
+  for (Vec3& p : t.positions) p += Vec3(jitter(rng), jitter(rng), jitter(rng));
+  const MeshFile layer{t.positions, t.faces, {}};
+  Outcome o;
+  const QuadMesh q = run_conversion(layer, "noisy", 0, o).mesh;
+  const Input plain = prepare_input(layer, "noisy", convert_options(SimplifyParams()));
+  EXPECT_LT(quad_quality(q).nonconvex_faces, quad_quality(plain.quads).nonconvex_faces);
+  const auto said = std::find_if(o.log.begin(), o.log.end(), [](const std::string& line) {
+    return line.find("quads non-convex or bent over 60 degrees, after") != std::string::npos;
+  });
+  ASSERT_NE(said, o.log.end());
+  EXPECT_LE(double(quad_quality(q).nonconvex_faces), std::stod(said->substr(said->find(": ") + 2)));
 }
 
 TEST(PluginRunner, a_crease_angle_reaches_the_conversion_and_the_simplification) {

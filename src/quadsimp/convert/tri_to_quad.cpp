@@ -352,8 +352,15 @@ void flip_path(Index u, Index x, Index partner, std::vector<Index>& mate, const 
   }
 }
 
-Index augment(Index u, const std::vector<std::array<Index, 3>>& adj, std::vector<Index>& mate,
-              Search& s, Index max_search, bool to_border, const std::vector<char>& crease) {
+// Any pair of neighbours may be made.
+struct AnyPair {
+  bool operator()(Index, Index) const { return true; }
+};
+
+// `allowed(y, k)` says whether the path may pair triangle y with its neighbour across side k.
+template <class Allowed = AnyPair>
+Index augment(Index u, const std::vector<std::array<Index, 3>>& adj, std::vector<Index>& mate, Search& s,
+              Index max_search, bool to_border, const std::vector<char>& crease, const Allowed& allowed = {}) {
   const Index stamp = ++s.stamp;
   s.queue.clear();
   s.queue.push_back(u);
@@ -368,8 +375,9 @@ Index augment(Index u, const std::vector<std::array<Index, 3>>& adj, std::vector
       }
       return y;
     }
-    for (Index t : adj[y]) {
-      if (t == kNone || s.seen[t] == stamp) continue;
+    for (Index k = 0; k < 3; ++k) {
+      const Index t = adj[y][k];
+      if (t == kNone || s.seen[t] == stamp || !allowed(y, k)) continue;
       if (mate[t] == kNone && !to_border) {
         flip_path(u, y, t, mate, s);
         return u;
@@ -500,6 +508,20 @@ Index split_pairs_at_creases(TriMesh& t, const std::vector<std::array<Index, 3>>
   return splits;
 }
 
+// The pairs pair_greedily() makes: convex, bent by at most max_dihedral_deg. score() is
+// the quad's quad_quality(), -1 for a pair bent further.
+struct GreedyPair {
+  const TriMesh& t;
+  const std::vector<std::array<Index, 3>>& adj;
+  double cos_max;
+  std::vector<Vec3> normal = unit_normals(t);
+  double score(Index f, Index k) const {
+    const Index g = adj[f][k];
+    return normal[f].dot(normal[g]) < cos_max ? -1 : quad_quality(t.positions, merged_quad(t, f, k, g));
+  }
+  bool operator()(Index f, Index k) const { return score(f, k) > 0; }
+};
+
 // Greedy matching of the triangles still unpaired, best candidate first (quad_quality();
 // non-convex pairs and pairs bent by more than max_dihedral_deg are not candidates); ties
 // broken by ids for determinism. Returns the triangles it paired. Its candidates and
@@ -513,13 +535,11 @@ Index pair_greedily(const TriMesh& t, const std::vector<std::array<Index, 3>>& a
   };
   std::vector<Cand> cand;
   cand.reserve(3 * t.faces.size() / 2);
-  const double cos_max = std::cos(max_dihedral_deg * M_PI / 180.0);
-  const std::vector<Vec3> normal = unit_normals(t);
+  const GreedyPair pair{t, adj, std::cos(max_dihedral_deg * M_PI / 180.0)};
   for (Index f = 0; f < t.n_faces(); ++f)
     for (Index k = 0; k < 3; ++k) {
-      const Index g = adj[f][k];
-      if (g == kNone || g < f || normal[f].dot(normal[g]) < cos_max) continue;
-      const double s = quad_quality(t.positions, merged_quad(t, f, k, g));
+      if (adj[f][k] == kNone || adj[f][k] < f) continue;
+      const double s = pair.score(f, k);
       if (s > 0) cand.push_back({s, f, k});
     }
   std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) {
@@ -534,6 +554,42 @@ Index pair_greedily(const TriMesh& t, const std::vector<std::array<Index, 3>>& a
     paired += 2;
   }
   return paired;
+}
+
+// ConvertOptions::convex_pairs, before the plain searches: each leftover is paired along an
+// alternating path of pairs greedy pairing would make, where one is found within
+// ConvertOptions::convex_search triangles.
+void pair_leftovers_convex(const TriMesh& t, const std::vector<std::array<Index, 3>>& adj,
+                           const std::vector<char>& crease, const ConvertOptions& opt, std::vector<Index>& mate,
+                           Search& search, ConvertReport& r) {
+  const GreedyPair good{t, adj, std::cos(opt.max_dihedral_deg * M_PI / 180.0)};
+  for (Index f = 0; f < t.n_faces(); ++f) {
+    if (mate[f] != kNone) continue;
+    if (augment(f, adj, mate, search, opt.convex_search, false, crease, good) != kNone) r.paired_augmented += 2;
+    r.searched += search.queue.size();
+  }
+}
+
+// ConvertOptions::convex_pairs, once every triangle is paired: each pair greedy pairing
+// would not make is taken apart and its two triangles joined again along an alternating
+// path of pairs it would make, where one is found; the pair stays where none is. Every
+// pair made is one greedy pairing would make, so each re-pairing leaves at least one such
+// pair fewer.
+void mend_pairs(const TriMesh& t, const std::vector<std::array<Index, 3>>& adj, const ConvertOptions& opt,
+                std::vector<Index>& mate, Search& search, ConvertReport& r) {
+  const GreedyPair good{t, adj, std::cos(opt.max_dihedral_deg * M_PI / 180.0)};
+  for (Index f = 0; f < t.n_faces(); ++f) {
+    const Index g = mate[f];
+    if (g == kNone || g < f) continue;
+    const Index k = Index(std::find(adj[f].begin(), adj[f].end(), g) - adj[f].begin());
+    if (k == 3 || good(f, k)) continue;  // k == 3: across a crease (split_pairs_at_creases() left none)
+    mate[f] = mate[g] = kNone;
+    if (augment(f, adj, mate, search, opt.convex_search, false, {}, good) != kNone)
+      ++r.mended;
+    else
+      mate[f] = g, mate[g] = f, ++r.not_mended;
+    r.searched += search.queue.size();
+  }
 }
 
 }  // namespace
@@ -598,6 +654,7 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
       r.paired_augmented += paired;
     }
   };
+  if (opt.convex_pairs) pair_leftovers_convex(t, adj, crease, opt, mate, search, r);
   pair_leftovers(adj);
   if (!crease.empty() && leftover()) {
     // Even in number, a part between creases may still have no pairing of its own (the
@@ -640,6 +697,7 @@ QuadMesh tri_to_quad(const TriMesh& input, const ConvertOptions& opt, ConvertRep
 
   QuadMesh q;
   if (r.paired_greedy + r.paired_augmented == r.input_triangles) {
+    if (opt.convex_pairs) mend_pairs(t, adj, opt, mate, search, r);
     std::vector<std::array<Index, 4>> quads;
     quads.reserve(t.n_faces() / 2);
     for (Index f = 0; f < t.n_faces(); ++f) {

@@ -19,6 +19,16 @@ struct ConvertOptions {
   //! edges), so that every crease (reference/creases.h, the same angle) is an edge of the
   //! quads, and the simplifier can keep it.
   double crease_angle_deg = 0;
+  //! Pairs that greedy pairing would not make (non-convex, or bent past max_dihedral_deg;
+  //! the searches below make them where they must) are avoided where the pairing allows:
+  //! the leftovers are first paired only along paths of pairs it would make, and once every
+  //! triangle is paired each other pair is re-paired along such a path where one joins its
+  //! two triangles; each search within `convex_search` triangles. On for the conversion as
+  //! a result of its own (`quadsimp convert`, the conversion filter); off for the
+  //! simplifier's input, whose results it moved without a gain (bench/RESULTS.md, "Pairing
+  //! the conversion's leftovers within smooth parts first").
+  bool convex_pairs = false;
+  Index convex_search = 4096;
 };
 
 struct ConvertReport {
@@ -35,6 +45,9 @@ struct ConvertReport {
   Index paired_augmented = 0;  //!< triangles paired by re-pairing along paths
   Index paired_blossoms = 0;   //!< of those, paired by Edmonds' algorithm after the searches
   Index border_splits = 0;     //!< border edges split where no pairing existed
+  //! With ConvertOptions::convex_pairs: pairs re-paired at the end, and the pairs greedy
+  //! pairing would not make that are left (non-convex, or bent past max_dihedral_deg).
+  Index mended = 0, not_mended = 0;
   //! Triangles the searches for paths reached, all leftovers together: the pairing's work.
   std::size_t searched = 0;
   bool refined = false;        //!< fell back to one refinement step
@@ -64,7 +77,9 @@ struct ConvertReport {
 //!    path to another leftover (TPC*10's triangle migration, as an augmenting path);
 //!    what those searches miss (paths through odd cycles), Edmonds' blossom algorithm
 //!    pairs. Where no pairing exists, the leftover is carried to the border instead and
-//!    a border edge is split at its midpoint.
+//!    a border edge is split at its midpoint. With ConvertOptions::convex_pairs, the
+//!    leftovers first search through pairs the greedy pass would make, and the pairs left
+//!    that it would not make are re-paired through such pairs where they can be.
 //! 4. If anything is still unpaired, one refinement step splits every quad into four
 //!    and every triangle into three quads (edge midpoints, triangle centroids, quad
 //!    diagonal midpoints: all on the input surface).
