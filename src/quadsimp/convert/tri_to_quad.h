@@ -25,9 +25,9 @@ struct ConvertOptions {
   //! triangle is paired each other pair is re-paired along such a path where one joins its
   //! two triangles; each search within `convex_search` triangles. On for the conversion as
   //! a result of its own (`quadsimp convert`, the conversion filter); off for the
-  //! simplifier's input, whose results the first search alone moved without a gain, with
-  //! folded quads in a fine uniform run (bench/RESULTS.md, "Pairing the conversion's
-  //! leftovers within smooth parts first").
+  //! simplifier's input, where it gave adaptive mode no gain over uniform mode (a lower
+  //! one at the twelve fixed counts: bench/RESULTS.md, "Convex quads from the
+  //! conversion").
   bool convex_pairs = false;
   Index convex_search = 4096;
 };
