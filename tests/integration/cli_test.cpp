@@ -9,7 +9,6 @@
 #include <fstream>
 #include <cstring>
 #include <map>
-#include <random>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -153,12 +152,8 @@ TEST_F(Cli, convert_writes_quads) {
 // (non-convex, or bent over 60 degrees) are re-paired where the pairing allows, and it says
 // how many are left. The simplifier starts from the plain pairing, with more of them.
 TEST_F(Cli, convert_keeps_its_quads_convex_where_it_can_and_says_how_many_are_not) {
-  TriMesh sphere = fixtures::tri_sphere(24, 36);
-  std::mt19937 rng(1);
-  std::uniform_real_distribution<double> jitter(-0.04, 0.04);
-  for (Vec3& q : sphere.positions) q += Vec3(jitter(rng), jitter(rng), jitter(rng));
   const std::string in = p("noisy.ply");
-  write_tri_mesh_ply(in, sphere);
+  write_tri_mesh_ply(in, fixtures::jittered(fixtures::tri_sphere(24, 36), 0.04, 1));
   const CliRun r = run("convert " + in + " " + p("q.ply"));
   ASSERT_EQ(r.code, 0) << r.out;
   const std::size_t at = r.out.find(" non-convex or bent over 60 degrees, after ");

@@ -15,7 +15,6 @@
 #include <fstream>
 #include <iterator>
 #include <map>
-#include <random>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -699,10 +698,7 @@ TEST(PluginRunner, the_texture_size_bounds_the_quads_texture) {
 // pairing would not make are re-paired where the pairing allows, and the log says how many
 // are left. The simplification starts from the plain pairing, as the CLI's does.
 TEST(PluginRunner, the_conversion_keeps_its_quads_convex_where_it_can) {
-  TriMesh t = tri_sphere(24, 36);
-  std::mt19937 rng(1);
-  std::uniform_real_distribution<double> jitter(-0.04, 0.04);
-  for (Vec3& p : t.positions) p += Vec3(jitter(rng), jitter(rng), jitter(rng));
+  const TriMesh t = jittered(tri_sphere(24, 36), 0.04, 1);
   const MeshFile layer{t.positions, t.faces, {}};
   Outcome o;
   const QuadMesh q = run_conversion(layer, "noisy", 0, o).mesh;

@@ -147,11 +147,7 @@ TEST(TriToQuad, a_noisy_sphere_pairs_every_triangle_where_the_searches_leave_som
   // refining into four times the quads; Edmonds' algorithm pairs them.
   for (unsigned seed : {201u, 222u}) {
     SCOPED_TRACE(seed);
-    TriMesh t = tri_sphere(20, 30);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> jitter(-0.03, 0.03);
-    for (Vec3& p : t.positions) p += Vec3(jitter(rng), jitter(rng), jitter(rng));
-    const ConvertReport r = convert_and_check(t);
+    const ConvertReport r = convert_and_check(jittered(tri_sphere(20, 30), 0.03, seed));
     EXPECT_EQ(r.quads, r.input_triangles / 2);
     EXPECT_GT(r.paired_blossoms, 0u);  // the case needs the fallback
     EXPECT_EQ(r.border_splits + r.parity_splits, 0u);
@@ -264,10 +260,7 @@ void expect_fewer_non_convex_with_convex_pairs(const TriMesh& t, double at_most_
 TEST(TriToQuad, convex_pairs_leave_fewer_non_convex_quads_on_noisy_spheres) {
   for (unsigned seed : {1u, 2u, 3u}) {
     SCOPED_TRACE(seed);
-    TriMesh t = tri_sphere(24, 36);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> jitter(-0.04, 0.04);
-    for (Vec3& p : t.positions) p += Vec3(jitter(rng), jitter(rng), jitter(rng));
+    TriMesh t = jittered(tri_sphere(24, 36), 0.04, seed);
     clean(t);
     // Noise of a quarter of an edge: many triangles pair convex with no neighbour.
     expect_fewer_non_convex_with_convex_pairs(t, 1.0);  // measured: 60 -> 30, 37 -> 31, 26 -> 17

@@ -511,10 +511,12 @@ Index split_pairs_at_creases(TriMesh& t, const std::vector<std::array<Index, 3>>
 // The pairs pair_greedily() makes: convex, bent by at most max_dihedral_deg. score() is
 // the quad's quad_quality(), -1 for a pair bent further.
 struct GreedyPair {
+  GreedyPair(const TriMesh& t, const std::vector<std::array<Index, 3>>& adj, double max_dihedral_deg)
+      : t(t), adj(adj), cos_max(std::cos(max_dihedral_deg * M_PI / 180.0)), normal(unit_normals(t)) {}
   const TriMesh& t;
   const std::vector<std::array<Index, 3>>& adj;
   double cos_max;
-  std::vector<Vec3> normal = unit_normals(t);
+  std::vector<Vec3> normal;
   double score(Index f, Index k) const {
     const Index g = adj[f][k];
     return normal[f].dot(normal[g]) < cos_max ? -1 : quad_quality(t.positions, merged_quad(t, f, k, g));
@@ -535,7 +537,7 @@ Index pair_greedily(const TriMesh& t, const std::vector<std::array<Index, 3>>& a
   };
   std::vector<Cand> cand;
   cand.reserve(3 * t.faces.size() / 2);
-  const GreedyPair pair{t, adj, std::cos(max_dihedral_deg * M_PI / 180.0)};
+  const GreedyPair pair(t, adj, max_dihedral_deg);
   for (Index f = 0; f < t.n_faces(); ++f)
     for (Index k = 0; k < 3; ++k) {
       if (adj[f][k] == kNone || adj[f][k] < f) continue;
@@ -562,7 +564,7 @@ Index pair_greedily(const TriMesh& t, const std::vector<std::array<Index, 3>>& a
 void pair_leftovers_convex(const TriMesh& t, const std::vector<std::array<Index, 3>>& adj,
                            const std::vector<char>& crease, const ConvertOptions& opt, std::vector<Index>& mate,
                            Search& search, ConvertReport& r) {
-  const GreedyPair good{t, adj, std::cos(opt.max_dihedral_deg * M_PI / 180.0)};
+  const GreedyPair good(t, adj, opt.max_dihedral_deg);
   for (Index f = 0; f < t.n_faces(); ++f) {
     if (mate[f] != kNone) continue;
     if (augment(f, adj, mate, search, opt.convex_search, false, crease, good) != kNone) r.paired_augmented += 2;
@@ -577,7 +579,7 @@ void pair_leftovers_convex(const TriMesh& t, const std::vector<std::array<Index,
 // pair fewer.
 void mend_pairs(const TriMesh& t, const std::vector<std::array<Index, 3>>& adj, const ConvertOptions& opt,
                 std::vector<Index>& mate, Search& search, ConvertReport& r) {
-  const GreedyPair good{t, adj, std::cos(opt.max_dihedral_deg * M_PI / 180.0)};
+  const GreedyPair good(t, adj, opt.max_dihedral_deg);
   for (Index f = 0; f < t.n_faces(); ++f) {
     const Index g = mate[f];
     if (g == kNone || g < f) continue;
